@@ -1,0 +1,40 @@
+# The ROS-free core: OpenCV + Eigen + the standard library. Every .cpp in src/core belongs to it.
+file(GLOB OT_CORE_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/core/*.cpp)
+add_library(obstacle_tracker_core ${OT_CORE_SOURCES})
+target_include_directories(obstacle_tracker_core PUBLIC
+  $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/include> $<INSTALL_INTERFACE:include>)
+target_include_directories(obstacle_tracker_core SYSTEM PUBLIC ${OpenCV_INCLUDE_DIRS} ${EIGEN3_INCLUDE_DIR})
+target_link_libraries(obstacle_tracker_core PUBLIC ${OpenCV_LIBS})
+set_target_properties(obstacle_tracker_core PROPERTIES POSITION_INDEPENDENT_CODE ON)
+
+# Synthetic flight scenes (tests, demo, benchmarks): src/scene.
+file(GLOB OT_SCENE_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/scene/*.cpp)
+if(OT_SCENE_SOURCES)
+  add_library(obstacle_tracker_scene ${OT_SCENE_SOURCES})
+  target_link_libraries(obstacle_tracker_scene PUBLIC obstacle_tracker_core)
+  set_target_properties(obstacle_tracker_scene PROPERTIES POSITION_INDEPENDENT_CODE ON)
+  list(APPEND OT_LIBS obstacle_tracker_scene)
+endif()
+
+# Evaluation: ground-truth parsing, OTB / long-term metrics, OpenCV reference trackers: src/eval.
+file(GLOB OT_EVAL_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/eval/*.cpp)
+if(OT_EVAL_SOURCES)
+  add_library(obstacle_tracker_eval ${OT_EVAL_SOURCES})
+  target_link_libraries(obstacle_tracker_eval PUBLIC obstacle_tracker_core)
+  set_target_properties(obstacle_tracker_eval PROPERTIES POSITION_INDEPENDENT_CODE ON)
+  list(APPEND OT_LIBS obstacle_tracker_eval)
+endif()
+list(APPEND OT_LIBS obstacle_tracker_core)
+
+# Command-line tools: each src/tools/NAME.cpp is the main of the executable NAME, linked with
+# every library above. Under catkin they land in devel/lib/obstacle_tracker (rosrun finds them).
+file(GLOB OT_TOOL_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/tools/*.cpp)
+foreach(src ${OT_TOOL_SOURCES})
+  get_filename_component(name ${src} NAME_WE)
+  add_executable(${name} ${src})
+  target_link_libraries(${name} ${OT_LIBS})
+  if(OT_TOOL_OUTPUT_DIR)
+    set_target_properties(${name} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${OT_TOOL_OUTPUT_DIR})
+  endif()
+  list(APPEND OT_TOOLS ${name})
+endforeach()

@@ -1,0 +1,19 @@
+# Unit and sequence tests of the core (GoogleTest). Each test/core/test_*.cpp is one test program,
+# linked with every core library; built by the `tests` target, registered with CTest per test case.
+find_package(GTest REQUIRED)
+include(GoogleTest)
+if(NOT TARGET tests)
+  add_custom_target(tests)
+endif()
+file(GLOB OT_CORE_TESTS CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/test/core/test_*.cpp)
+foreach(src ${OT_CORE_TESTS})
+  get_filename_component(name ${src} NAME_WE)
+  add_executable(${name} EXCLUDE_FROM_ALL ${src})
+  target_link_libraries(${name} ${OT_LIBS} GTest::gtest GTest::gtest_main pthread)
+  target_compile_definitions(${name} PRIVATE
+    OT_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
+    OT_SHARED_DIR="${PROJECT_SOURCE_DIR}/../shared")
+  add_dependencies(tests ${name})
+  gtest_discover_tests(${name} DISCOVERY_MODE PRE_TEST DISCOVERY_TIMEOUT 60
+    PROPERTIES LABELS core)
+endforeach()

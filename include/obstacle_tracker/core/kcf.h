@@ -1,0 +1,56 @@
+// Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
+//
+// Kernelized correlation filter (Henriques et al., TPAMI 2015) on fHOG + grey features with a
+// fixed template size, scale estimation and confidence (peak, PSR).
+//
+// INTERFACE CONTRACT (used by the pipeline; keep these members and their meaning, add freely).
+#pragma once
+
+#include <opencv2/core.hpp>
+
+#include "obstacle_tracker/core/params.h"
+
+namespace obstacle_tracker {
+namespace core {
+
+struct KcfResult {
+  cv::Rect2f box;            // new box in frame pixels
+  float peak = 0.0f;         // raw maximum of the response (the paper's confidence)
+  float psr = 0.0f;          // peak-to-sidelobe ratio
+  float confidence = 0.0f;   // [0, 1], mapping documented in kcf.cpp
+  float scale_change = 1.0f; // box size ratio against the previous frame
+  bool model_updated = false;
+};
+
+class KcfTracker {
+ public:
+  explicit KcfTracker(const Params& params = Params());
+  ~KcfTracker();
+  KcfTracker(const KcfTracker&) = delete;
+  KcfTracker& operator=(const KcfTracker&) = delete;
+  KcfTracker(KcfTracker&&) noexcept;
+  KcfTracker& operator=(KcfTracker&&) noexcept;
+
+  // Takes effect at the next init (filter geometry) or update (rates, thresholds).
+  void setParams(const Params& params);
+
+  // Starts (or restarts) the filter on box. frame: CV_8UC1 or CV_8UC3 (BGR).
+  void init(const cv::Mat& frame, const cv::Rect2f& box);
+
+  // Detects in frame around the current box, then learns when confidence >= learn_threshold.
+  KcfResult update(const cv::Mat& frame);
+
+  // Correlates the current model at a candidate box without changing any state (to verify a
+  // re-detection candidate against the model).
+  KcfResult evaluate(const cv::Mat& frame, const cv::Rect2f& candidate);
+
+  bool initialized() const;
+  cv::Rect2f box() const;
+
+ private:
+  struct Impl;
+  Impl* impl_;
+};
+
+}  // namespace core
+}  // namespace obstacle_tracker

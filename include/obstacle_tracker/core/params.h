@@ -1,0 +1,113 @@
+// Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
+//
+// Every tunable of the pipeline, declared once. The list below is the single source of truth:
+// the Params struct, the YAML loader, the range checks, the nodelet's ROS parameters and the
+// dynamic_reconfigure config all use these names (test_params checks config/ObstacleTracker.cfg,
+// config/defaults.yaml and the README table against it).
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace obstacle_tracker {
+namespace core {
+
+// X(type, name, default, min, max, unit, description)
+// type is bool, int or double. min/max are inclusive; a value outside is clamped with a message,
+// a NaN is refused (the old value stays) with a message.
+
+// Closed loop (DESIGN.md "Core contracts").
+#define OT_LOOP_PARAMS(X)                                                                          \
+  X(double, peak_threshold, 0.20, 0.0, 1.0, "",                                                    \
+    "raw KCF response peak below which the track re-detects (the paper's test)")                  \
+  X(double, learn_threshold, 0.35, 0.0, 1.0, "",                                                   \
+    "confidence below which the filter model is not updated (keeps occluders out)")               \
+  X(double, search_window_scale, 3.0, 1.0, 20.0, "x box",                                          \
+    "side of the re-detection window as a multiple of the last box side")                         \
+  X(int, detection_interval, 1, 1, 1000, "frames",                                                 \
+    "frames between whole-frame saliency searches while searching")                               \
+  X(int, max_obstacles, 1, 1, 16, "", "tracks kept at once (1 = the paper's single-target loop)") \
+  X(int, max_redetect_failures, 15, 0, 10000, "frames",                                            \
+    "failed re-detections before a track is declared lost")                                       \
+  X(double, min_object_area, 12.0, 1.0, 1.0e6, "px^2",                                             \
+    "smallest salient region (in full-frame pixels) taken as an object")                          \
+  X(double, max_object_area_fraction, 0.25, 0.0001, 1.0, "",                                       \
+    "largest salient region, as a fraction of the frame area")                                    \
+  X(double, merge_iou, 0.5, 0.0, 1.0, "", "tracks overlapping more than this IoU are merged")      \
+  X(int, looming_window, 15, 3, 300, "frames",                                                     \
+    "box-size history used for the expansion rate (least-squares slope of ln size)")
+
+// Saliency detector (FastMBD, Otsu, regions, auto-initialisation).
+#define OT_SALIENCY_PARAMS(X)                                                                      \
+  X(int, saliency_max_side, 300, 32, 4096, "px",                                                   \
+    "longer side of the image the whole-frame saliency map is computed on")                       \
+  X(int, saliency_passes, 3, 1, 10, "", "raster-scan passes of FastMBD")                           \
+  X(bool, saliency_backgroundness, false, false, true, "",                                         \
+    "add MB+'s image-border contrast (backgroundness) map")                                       \
+  X(bool, saliency_postprocess, false, false, true, "",                                            \
+    "MB+ smoothing by morphological reconstruction and sigmoid contrast stretch")                 \
+  X(bool, reject_border_regions, true, false, true, "",                                            \
+    "ignore salient regions that touch the frame border")
+
+// Kernelized correlation filter and scale.
+#define OT_TRACKER_PARAMS(X)                                                                       \
+  X(double, learning_rate, 0.02, 0.0, 1.0, "", "model interpolation factor per frame (eta)")       \
+  X(double, kcf_padding, 1.5, 0.0, 5.0, "x box", "context around the box in the filter window")    \
+  X(int, kcf_template_size, 96, 32, 256, "px", "longer side of the resized filter window")         \
+  X(int, kcf_cell_size, 4, 1, 8, "px", "HOG cell size")                                            \
+  X(double, kcf_lambda, 1.0e-4, 1.0e-8, 1.0, "", "ridge-regression regulariser")                   \
+  X(double, kcf_kernel_sigma, 0.5, 0.01, 10.0, "", "Gaussian kernel bandwidth")                    \
+  X(double, kcf_output_sigma_factor, 0.1, 0.01, 1.0, "",                                           \
+    "label Gaussian sigma as a fraction of the target size")                                      \
+  X(int, scale_count, 3, 1, 33, "", "scales searched per frame (1 = no scale estimation)")         \
+  X(double, scale_step, 1.05, 1.0, 1.5, "", "ratio between neighbouring scales")
+
+#define OT_PARAMS(X) OT_LOOP_PARAMS(X) OT_SALIENCY_PARAMS(X) OT_TRACKER_PARAMS(X)
+
+struct Params {
+#define OT_PARAMS_DECLARE_(type, name, def, lo, hi, unit, doc) type name = def;
+  OT_PARAMS(OT_PARAMS_DECLARE_)
+#undef OT_PARAMS_DECLARE_
+};
+
+// One row of the parameter table, for tools that list, load or expose parameters by name.
+struct ParamInfo {
+  const char* name;
+  const char* type;  // "bool", "int" or "double"
+  double default_value;
+  double min_value;
+  double max_value;
+  const char* unit;
+  const char* description;
+};
+
+const std::vector<ParamInfo>& paramTable();
+const ParamInfo* findParam(const std::string& name);
+
+// Reads a parameter as a double (bool -> 0/1). Throws std::out_of_range for an unknown name.
+double getParam(const Params& params, const std::string& name);
+
+// Sets a parameter by name. A NaN or an unknown name is refused (returns false, params
+// unchanged); a value outside [min, max] (including +-inf) is clamped; ints are rounded. When
+// `message` is given it receives a sentence naming the parameter and its valid range whenever
+// the value was refused, clamped or rounded (empty otherwise).
+bool setParam(Params& params, const std::string& name, double value, std::string* message = nullptr);
+
+// Clamps every field into its range (NaN -> default). Returns one message per changed field.
+std::vector<std::string> validate(Params& params);
+
+// Loads a flat YAML/JSON map of parameter names to values (cv::FileStorage), on top of `base`.
+// Unknown keys and bad values produce messages, never an exception; a file that cannot be read
+// or parsed throws std::runtime_error naming the file.
+Params loadParamsFile(const std::string& path, std::vector<std::string>* messages,
+                      const Params& base = Params());
+
+// Same, from YAML text in memory (used by the fuzzer and tests).
+Params loadParamsString(const std::string& yaml, std::vector<std::string>* messages,
+                        const Params& base = Params());
+
+// Writes all parameters as YAML (name: value, with the description as a comment).
+std::string paramsToYaml(const Params& params);
+
+}  // namespace core
+}  // namespace obstacle_tracker

@@ -1,0 +1,79 @@
+// Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
+//
+// Saliency detector: FastMBD minimum-barrier-distance saliency (Zhang et al., ICCV 2015), Otsu
+// segmentation and connected salient regions (Bharati et al., T-IV 2018, Algorithm 1), on the
+// whole frame or inside a search window around the last box.
+//
+// INTERFACE CONTRACT (used by the pipeline; keep these members and their meaning, add freely).
+#pragma once
+
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "obstacle_tracker/core/params.h"
+
+namespace obstacle_tracker {
+namespace core {
+
+struct SalientRegion {
+  cv::Rect2f box;               // full-frame pixel coordinates
+  float area = 0.0f;            // region pixels, in full-frame pixels^2
+  float mean_saliency = 0.0f;   // [0, 1]
+  float score = 0.0f;           // ranking score, higher is better (documented in saliency.cpp)
+  bool touches_border = false;  // touches the frame (or window) border
+};
+
+class SaliencyDetector {
+ public:
+  explicit SaliencyDetector(const Params& params = Params());
+  ~SaliencyDetector();
+  SaliencyDetector(const SaliencyDetector&) = delete;
+  SaliencyDetector& operator=(const SaliencyDetector&) = delete;
+
+  void setParams(const Params& params);
+
+  // Whole-frame detection. frame: CV_8UC1 (grey/thermal) or CV_8UC3 (BGR), non-empty.
+  // Returns the salient regions ranked best first (empty when nothing qualifies). Throws
+  // std::invalid_argument on an empty frame or an unsupported type.
+  const std::vector<SalientRegion>& detect(const cv::Mat& frame);
+
+  // Re-detection inside searchWindow(frame.size(), last_box, params.search_window_scale);
+  // regions come back in full-frame coordinates, ranked best first.
+  const std::vector<SalientRegion>& detectInWindow(const cv::Mat& frame, const cv::Rect2f& last_box);
+
+  // search_window_scale x the box, centred on it, at least a few dozen pixels, clipped to the
+  // frame. Empty when the box does not intersect the frame.
+  static cv::Rect searchWindow(const cv::Size& frame_size, const cv::Rect2f& box, double scale);
+
+  // The last saliency map (CV_8U, 0..255), at the resolution it was computed at, and the
+  // full-frame rectangle it covers.
+  const cv::Mat& saliencyMap() const;
+  cv::Rect mapRegion() const;
+
+ private:
+  struct Impl;
+  Impl* impl_;
+};
+
+// Auto-initialisation from several frames (DATA_NOTES.md: one frame's saliency picks the wrong
+// object on real footage). Feed every frame while searching; returns the candidates confirmed by
+// the multi-frame cues (full-frame coordinates, best first), empty while nothing is confirmed.
+class AutoInitializer {
+ public:
+  explicit AutoInitializer(const Params& params = Params());
+  ~AutoInitializer();
+  AutoInitializer(const AutoInitializer&) = delete;
+  AutoInitializer& operator=(const AutoInitializer&) = delete;
+
+  void setParams(const Params& params);
+  void reset();
+  const std::vector<SalientRegion>& update(const cv::Mat& frame, double stamp);
+
+ private:
+  struct Impl;
+  Impl* impl_;
+};
+
+}  // namespace core
+}  // namespace obstacle_tracker

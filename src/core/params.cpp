@@ -1,0 +1,232 @@
+// Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
+#include "obstacle_tracker/core/params.h"
+
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+#include <opencv2/core.hpp>
+
+namespace obstacle_tracker {
+namespace core {
+
+namespace {
+
+template <typename T>
+double toDouble(T v) {
+  return static_cast<double>(v);
+}
+
+template <typename T>
+void assign(T& field, double v) {
+  field = static_cast<T>(v);
+}
+template <>
+void assign<bool>(bool& field, double v) {
+  field = v != 0.0;
+}
+
+std::string formatValue(const ParamInfo& info, double v) {
+  std::ostringstream os;
+  if (std::string(info.type) == "bool") {
+    os << (v != 0.0 ? "true" : "false");
+  } else if (std::string(info.type) == "int") {
+    os << static_cast<long long>(v);
+  } else {
+    os << std::setprecision(9) << v;
+  }
+  return os.str();
+}
+
+std::string rangeText(const ParamInfo& info) {
+  return "[" + formatValue(info, info.min_value) + ", " + formatValue(info, info.max_value) + "]";
+}
+
+}  // namespace
+
+const std::vector<ParamInfo>& paramTable() {
+  static const std::vector<ParamInfo> table = {
+#define OT_PARAMS_INFO_(type, name, def, lo, hi, unit, doc) \
+  ParamInfo{#name, #type, toDouble<type>(def), toDouble<type>(lo), toDouble<type>(hi), unit, doc},
+      OT_PARAMS(OT_PARAMS_INFO_)
+#undef OT_PARAMS_INFO_
+  };
+  return table;
+}
+
+const ParamInfo* findParam(const std::string& name) {
+  for (const ParamInfo& info : paramTable()) {
+    if (name == info.name) return &info;
+  }
+  return nullptr;
+}
+
+double getParam(const Params& params, const std::string& name) {
+#define OT_PARAMS_GET_(type, pname, def, lo, hi, unit, doc) \
+  if (name == #pname) return toDouble<type>(params.pname);
+  OT_PARAMS(OT_PARAMS_GET_)
+#undef OT_PARAMS_GET_
+  throw std::out_of_range("unknown parameter '" + name + "'");
+}
+
+bool setParam(Params& params, const std::string& name, double value, std::string* message) {
+  if (message) message->clear();
+  const ParamInfo* info = findParam(name);
+  if (!info) {
+    if (message) *message = "unknown parameter '" + name + "' ignored";
+    return false;
+  }
+  if (std::isnan(value)) {
+    if (message) {
+      *message = "parameter '" + name + "' = NaN refused; valid range " + rangeText(*info) +
+                 ", keeping " + formatValue(*info, getParam(params, name));
+    }
+    return false;
+  }
+  double v = value;
+  std::string type = info->type;
+  if (v < info->min_value) v = info->min_value;
+  if (v > info->max_value) v = info->max_value;
+  if (type == "int") v = std::round(v);
+  if (type == "bool") v = (v != 0.0) ? 1.0 : 0.0;
+  if (message && v != value) {
+    std::ostringstream os;
+    os << "parameter '" << name << "' = " << std::setprecision(9) << value << " is outside "
+       << (type == "int" ? "the integers of " : "") << "its valid range " << rangeText(*info)
+       << "; using " << formatValue(*info, v);
+    *message = os.str();
+  }
+#define OT_PARAMS_SET_(type, pname, def, lo, hi, unit, doc) \
+  if (name == #pname) {                                    \
+    assign<type>(params.pname, v);                         \
+    return true;                                           \
+  }
+  OT_PARAMS(OT_PARAMS_SET_)
+#undef OT_PARAMS_SET_
+  return false;
+}
+
+std::vector<std::string> validate(Params& params) {
+  std::vector<std::string> messages;
+  for (const ParamInfo& info : paramTable()) {
+    double v = getParam(params, info.name);
+    std::string msg;
+    if (std::isnan(v)) {
+      setParam(params, info.name, info.default_value);
+      messages.push_back("parameter '" + std::string(info.name) + "' = NaN refused; valid range " +
+                         rangeText(info) + ", using the default " +
+                         formatValue(info, info.default_value));
+      continue;
+    }
+    setParam(params, info.name, v, &msg);
+    if (!msg.empty()) messages.push_back(msg);
+  }
+  return messages;
+}
+
+namespace {
+
+Params loadFromStorage(cv::FileStorage& fs, const std::string& what,
+                       std::vector<std::string>* messages, const Params& base) {
+  Params params = base;
+  cv::FileNode root = fs.root();
+  if (root.empty() || root.isNone()) return params;
+  if (!root.isMap()) {
+    throw std::runtime_error(what + ": expected a map of parameter names to values");
+  }
+  for (cv::FileNodeIterator it = root.begin(); it != root.end(); ++it) {
+    cv::FileNode node = *it;
+    std::string name = node.name();
+    const ParamInfo* info = findParam(name);
+    if (!info) {
+      if (messages) messages->push_back(what + ": unknown parameter '" + name + "' ignored");
+      continue;
+    }
+    double value = std::numeric_limits<double>::quiet_NaN();
+    if (node.isInt() || node.isReal()) {
+      value = static_cast<double>(node);
+    } else if (node.isString()) {
+      std::string s = static_cast<std::string>(node);
+      if (s == "true" || s == "True" || s == "TRUE" || s == "yes" || s == "on") {
+        value = 1.0;
+      } else if (s == "false" || s == "False" || s == "FALSE" || s == "no" || s == "off") {
+        value = 0.0;
+      } else if (s == ".inf" || s == "inf" || s == "+.inf") {
+        value = std::numeric_limits<double>::infinity();
+      } else if (s == "-.inf" || s == "-inf") {
+        value = -std::numeric_limits<double>::infinity();
+      } else {
+        if (messages) {
+          messages->push_back(what + ": parameter '" + name + "' has a non-numeric value '" + s +
+                              "'; keeping " + formatValue(*info, getParam(params, name)));
+        }
+        continue;
+      }
+    } else {
+      if (messages) {
+        messages->push_back(what + ": parameter '" + name + "' is not a number; ignored");
+      }
+      continue;
+    }
+    std::string msg;
+    setParam(params, name, value, &msg);
+    if (!msg.empty() && messages) messages->push_back(what + ": " + msg);
+  }
+  return params;
+}
+
+// The files are plain YAML as rosparam reads them; OpenCV's parser wants its "%YAML:1.0" header,
+// so it is added in memory when missing (and a PyYAML-style "%YAML 1.x" directive replaced).
+Params loadParamsText(const std::string& yaml, const std::string& what,
+                      std::vector<std::string>* messages, const Params& base) {
+  std::string body = yaml;
+  if (body.rfind("%YAML", 0) == 0) {
+    size_t eol = body.find('\n');
+    body = eol == std::string::npos ? std::string() : body.substr(eol + 1);
+  }
+  if (body.find_first_not_of(" \t\r\n") == std::string::npos) return base;
+  std::string text = "%YAML:1.0\n" + (body.rfind("---", 0) == 0 ? body : "---\n" + body);
+  cv::FileStorage fs;
+  try {
+    if (!fs.open(text, cv::FileStorage::READ | cv::FileStorage::MEMORY |
+                           cv::FileStorage::FORMAT_YAML)) {
+      throw std::runtime_error("cannot parse " + what);
+    }
+    return loadFromStorage(fs, what, messages, base);
+  } catch (const cv::Exception& e) {
+    throw std::runtime_error("cannot parse " + what + ": " + e.what());
+  }
+}
+
+}  // namespace
+
+Params loadParamsFile(const std::string& path, std::vector<std::string>* messages,
+                      const Params& base) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cannot open parameter file '" + path + "'");
+  std::stringstream text;
+  text << in.rdbuf();
+  return loadParamsText(text.str(), path, messages, base);
+}
+
+Params loadParamsString(const std::string& yaml, std::vector<std::string>* messages,
+                        const Params& base) {
+  return loadParamsText(yaml, "parameters", messages, base);
+}
+
+std::string paramsToYaml(const Params& params) {
+  std::ostringstream os;
+  for (const ParamInfo& info : paramTable()) {
+    os << "# " << info.description;
+    if (info.unit[0] != '\0') os << " [" << info.unit << "]";
+    os << ", range " << rangeText(info) << "\n";
+    os << info.name << ": " << formatValue(info, getParam(params, info.name)) << "\n";
+  }
+  return os.str();
+}
+
+}  // namespace core
+}  // namespace obstacle_tracker
