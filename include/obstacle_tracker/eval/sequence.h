@@ -1,0 +1,147 @@
+// Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
+//
+// Reading image sequences with ground truth: an OTB-layout folder (img/ + groundtruth_rect.txt),
+// a plain folder of images, or a video file (+ an optional ground-truth file). Frames are decoded
+// one at a time; FrameConverter turns any decoded frame into what the core accepts (CV_8UC1 or
+// CV_8UC3 BGR). Shared by track_sequence and the evaluation tool.
+#pragma once
+
+#include <istream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+namespace obstacle_tracker {
+namespace eval {
+
+// ---- Ground truth ------------------------------------------------------------------------------
+// One box per frame, x,y,w,h (top-left corner, pixels). An absent target (a NaN anywhere, a
+// non-positive width or height, `0,0,0,0`, or an empty line) is the zero box {0,0,0,0}.
+
+inline bool isPresent(const cv::Rect2f& box) { return box.width > 0.0f && box.height > 0.0f; }
+
+// Parses one line. Separators: commas, tabs, spaces, semicolons (any mix, repeated). 4 values are
+// x,y,w,h; 8 values are a polygon x1,y1,...,x4,y4 (VOT), turned into its axis-aligned bounding
+// box. Returns false (and leaves *box alone) when the line is not a box (wrong count or a token
+// that is not a number); an empty line parses as absent.
+bool parseGroundTruthLine(const std::string& line, cv::Rect2f* box);
+
+// Parses a whole file's text: one box per line (CRLF accepted; trailing blank lines dropped; a
+// first line that is not numeric is taken as a header and skipped). Throws std::runtime_error
+// naming `source` and the line number for any other line that is not a box.
+std::vector<cv::Rect2f> parseGroundTruth(std::istream& in, const std::string& source = "input");
+
+// Reads a ground-truth file. Throws std::runtime_error when it cannot be opened or parsed.
+std::vector<cv::Rect2f> loadGroundTruth(const std::string& path);
+
+// ---- Frames for the core -----------------------------------------------------------------------
+
+// Converts any decoded frame to CV_8UC1 or CV_8UC3 (BGR), the types core::Pipeline accepts.
+// 8-bit 1- and 3-channel frames pass through without a copy; 4-channel -> BGR; 2-channel ->
+// its first channel; 16-bit and float frames get a robust linear stretch: the [low, high]
+// percentiles of the frame's values (all channels together; NaN/inf ignored) map to [0, 255],
+// values outside are clipped (so a few dead or hot pixels do not flatten the picture). With
+// `smoothing` in (0, 1] the stretch range is an exponential moving average over the frames
+// converted so far (smoothing = weight of the newest frame; 1 = per-frame), which keeps the
+// brightness of a video from flickering. Buffers are reused between calls.
+class FrameConverter {
+ public:
+  explicit FrameConverter(double low_percent = 0.5, double high_percent = 99.95,
+                          double smoothing = 1.0);
+
+  // Throws std::invalid_argument for an empty frame or more than 4 channels.
+  // The result may share data with `in` (8-bit 1/3-channel) or with the converter's buffers:
+  // it is valid until the next call.
+  const cv::Mat& convert(const cv::Mat& in);
+
+  // Forgets the smoothed range (e.g. at the start of a new sequence).
+  void reset();
+
+  // The last stretch range applied to a non-8-bit frame (value mapped to 0 and to 255).
+  double lastLow() const { return low_; }
+  double lastHigh() const { return high_; }
+
+ private:
+  double low_percent_, high_percent_, smoothing_;
+  bool have_range_ = false;
+  double low_ = 0.0, high_ = 255.0;
+  std::vector<int> histogram_;
+  std::vector<float> samples_;
+  cv::Mat work_, float_, out_;
+};
+
+// One-shot conversion with a per-frame stretch (same rules as FrameConverter).
+cv::Mat toCoreFrame(const cv::Mat& in);
+
+// ---- Sequences ---------------------------------------------------------------------------------
+
+class Sequence {
+ public:
+  enum class Kind { kOtbFolder, kImageFolder, kVideo };
+
+  // path: an OTB folder (an `img/` subfolder of images, or images directly, plus
+  // groundtruth_rect.txt / groundtruth.txt), a folder of images (sorted by name, numbers in names
+  // compared as numbers), or a video file. ground_truth_path overrides the ground-truth file;
+  // for a video without it, `<video stem>.txt`, `<video stem>_gt.txt` or `groundtruth_rect.txt`
+  // next to the video is used when present. Throws std::runtime_error naming the path when it
+  // cannot be opened, holds no image, or the ground truth cannot be parsed.
+  explicit Sequence(const std::string& path, const std::string& ground_truth_path = "");
+  ~Sequence();
+  Sequence(const Sequence&) = delete;
+  Sequence& operator=(const Sequence&) = delete;
+
+  Kind kind() const { return kind_; }
+  const std::string& path() const { return path_; }
+  const std::string& name() const { return name_; }  // folder name or video stem
+
+  // Number of frames: the image count, or the video's frame count (as the container reports it;
+  // read() may end earlier or later).
+  int frameCount() const { return frame_count_; }
+
+  // Frames per second: the video's, or a `fps` entry in scene.yaml / scene.yml / scene.txt /
+  // fps.txt inside the folder (written by generate_scene), else 30 (the OTB convention).
+  double fps() const { return fps_; }
+
+  // Ground truth (empty when there is none). Boxes past its end count as absent.
+  bool hasGroundTruth() const { return !ground_truth_.empty(); }
+  const std::vector<cv::Rect2f>& groundTruth() const { return ground_truth_; }
+  cv::Rect2f groundTruthAt(int index) const;
+
+  // Decodes the next frame as stored (cv::IMREAD_UNCHANGED for images: 16-bit, 1-, 3- or
+  // 4-channel frames come back as they are). Returns false at the end. Throws
+  // std::runtime_error naming the file when an image file cannot be decoded.
+  bool read(cv::Mat& frame);
+
+  // Index of the frame the next read() returns.
+  int position() const { return position_; }
+
+  // Moves so that the next read() returns frame `index` (0-based; videos are re-opened and
+  // skipped forward when going back). Throws std::out_of_range when index < 0 or > frameCount().
+  void seek(int index);
+
+  // The image files (folders only; empty for a video).
+  const std::vector<std::string>& files() const { return files_; }
+
+ private:
+  Kind kind_ = Kind::kImageFolder;
+  std::string path_, name_;
+  int frame_count_ = 0;
+  double fps_ = 30.0;
+  int position_ = 0;
+  std::vector<std::string> files_;
+  std::vector<cv::Rect2f> ground_truth_;
+  struct Video;
+  std::unique_ptr<Video> video_;
+};
+
+// True when the path names a file with an image extension (jpg, jpeg, png, bmp, tif, tiff, pgm,
+// ppm, pbm, webp, jp2, exr, hdr), case-insensitive.
+bool hasImageExtension(const std::string& path);
+
+// Reads `fps` from a small key/value text (YAML `fps: 25`, `fps=25`, `fps 25`); 0 when absent.
+double parseFpsText(const std::string& text);
+
+}  // namespace eval
+}  // namespace obstacle_tracker
