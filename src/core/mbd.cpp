@@ -1,0 +1,181 @@
+// Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
+//
+// FastMBD (Zhang et al., ICCV 2015, Algorithm 1) and a brute-force exact MBD for tests. See mbd.h.
+#include "obstacle_tracker/core/mbd.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <functional>
+#include <queue>
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+namespace obstacle_tracker {
+namespace core {
+namespace {
+
+// Relaxes pixels [0, n) of one row against the row `nb` (the row above in a forward pass, below in
+// a backward pass). Independent across the row, so it is written branch-free for the vectoriser.
+inline std::uint8_t relaxRow(const std::uint8_t* img, const std::uint8_t* nb_u, const std::uint8_t* nb_l,
+                             std::uint8_t* d, std::uint8_t* u, std::uint8_t* l, int n) {
+  std::uint8_t changed = 0;
+  for (int j = 0; j < n; ++j) {
+    const std::uint8_t cu = std::max(nb_u[j], img[j]);
+    const std::uint8_t cl = std::min(nb_l[j], img[j]);
+    const std::uint8_t b = static_cast<std::uint8_t>(cu - cl);
+    const std::uint8_t m = static_cast<std::uint8_t>(-(b < d[j]));  // 0xFF where better
+    d[j] = static_cast<std::uint8_t>((b & m) | (d[j] & ~m));
+    u[j] = static_cast<std::uint8_t>((cu & m) | (u[j] & ~m));
+    l[j] = static_cast<std::uint8_t>((cl & m) | (l[j] & ~m));
+    changed |= m;
+  }
+  return changed;
+}
+
+// Serial sweep along one row: pixel c against its neighbour c - step (forward, step = +CN) or
+// c + CN (backward). CN channels are independent chains interleaved in memory.
+template <int CN, bool kForward>
+inline std::uint8_t sweepRow(const std::uint8_t* img, std::uint8_t* d, std::uint8_t* u, std::uint8_t* l,
+                             int cols) {
+  std::uint8_t changed = 0;
+  if (kForward) {
+    for (int c = 1; c < cols - 1; ++c) {
+      for (int k = 0; k < CN; ++k) {
+        const int j = c * CN + k, q = j - CN;
+        const std::uint8_t cu = std::max(u[q], img[j]);
+        const std::uint8_t cl = std::min(l[q], img[j]);
+        const std::uint8_t b = static_cast<std::uint8_t>(cu - cl);
+        if (b < d[j]) {
+          d[j] = b;
+          u[j] = cu;
+          l[j] = cl;
+          changed = 1;
+        }
+      }
+    }
+  } else {
+    for (int c = cols - 2; c >= 1; --c) {
+      for (int k = 0; k < CN; ++k) {
+        const int j = c * CN + k, q = j + CN;
+        const std::uint8_t cu = std::max(u[q], img[j]);
+        const std::uint8_t cl = std::min(l[q], img[j]);
+        const std::uint8_t b = static_cast<std::uint8_t>(cu - cl);
+        if (b < d[j]) {
+          d[j] = b;
+          u[j] = cu;
+          l[j] = cl;
+          changed = 1;
+        }
+      }
+    }
+  }
+  return changed;
+}
+
+template <int CN>
+int fastMbdImpl(const cv::Mat& image, int passes, cv::Mat& dist, cv::Mat& upper, cv::Mat& lower) {
+  const int rows = image.rows, cols = image.cols;
+  image.copyTo(upper);
+  image.copyTo(lower);
+  dist.setTo(cv::Scalar::all(0));
+  if (rows < 3 || cols < 3) return 0;  // every pixel is a seed
+  for (int r = 1; r < rows - 1; ++r) {
+    std::uint8_t* d = dist.ptr<std::uint8_t>(r);
+    std::fill(d + CN, d + (cols - 1) * CN, std::uint8_t(255));
+  }
+  // Interior bytes of a row: columns 1 .. cols-2.
+  const int n = (cols - 2) * CN;
+  int run = 0;
+  for (int p = 0; p < passes; ++p) {
+    const bool forward = (p % 2) == 0;
+    std::uint8_t changed = 0;
+    for (int i = 1; i < rows - 1; ++i) {
+      const int r = forward ? i : rows - 1 - i;
+      const int rn = forward ? r - 1 : r + 1;
+      const std::uint8_t* img = image.ptr<std::uint8_t>(r);
+      std::uint8_t* d = dist.ptr<std::uint8_t>(r);
+      std::uint8_t* u = upper.ptr<std::uint8_t>(r);
+      std::uint8_t* l = lower.ptr<std::uint8_t>(r);
+      changed |= relaxRow(img + CN, upper.ptr<std::uint8_t>(rn) + CN, lower.ptr<std::uint8_t>(rn) + CN,
+                          d + CN, u + CN, l + CN, n);
+      changed |= forward ? sweepRow<CN, true>(img, d, u, l, cols) : sweepRow<CN, false>(img, d, u, l, cols);
+    }
+    ++run;
+    if (!changed && p > 0) break;  // stable under both scan orders: converged
+  }
+  return run;
+}
+
+}  // namespace
+
+int fastMbd(const cv::Mat& image, int passes, cv::Mat& dist, cv::Mat& upper, cv::Mat& lower) {
+  if (image.empty()) throw std::invalid_argument("fastMbd: empty image");
+  if (image.type() != CV_8UC1 && image.type() != CV_8UC3)
+    throw std::invalid_argument("fastMbd: image must be CV_8UC1 or CV_8UC3");
+  if (passes < 1) throw std::invalid_argument("fastMbd: passes must be >= 1");
+  dist.create(image.size(), image.type());
+  upper.create(image.size(), image.type());
+  lower.create(image.size(), image.type());
+  return image.channels() == 1 ? fastMbdImpl<1>(image, passes, dist, upper, lower)
+                               : fastMbdImpl<3>(image, passes, dist, upper, lower);
+}
+
+cv::Mat exactMbd(const cv::Mat& image) {
+  if (image.empty()) throw std::invalid_argument("exactMbd: empty image");
+  if (image.type() != CV_8UC1) throw std::invalid_argument("exactMbd: image must be CV_8UC1");
+  const int rows = image.rows, cols = image.cols, n = rows * cols;
+  std::vector<int> value(n);
+  for (int r = 0; r < rows; ++r)
+    for (int c = 0; c < cols; ++c) value[r * cols + c] = image.at<std::uint8_t>(r, c);
+  std::vector<int> best(n, 255);
+  std::vector<int> minimax(n);
+  using Item = std::pair<int, int>;  // (path maximum, pixel)
+  const int dr[4] = {-1, 1, 0, 0}, dc[4] = {0, 0, -1, 1};
+  for (int lo = 0; lo < 256; ++lo) {
+    // Minimax (bottleneck) Dijkstra from the border seeds through pixels with value >= lo.
+    std::fill(minimax.begin(), minimax.end(), 1 << 20);
+    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+    bool any = false;
+    for (int r = 0; r < rows; ++r)
+      for (int c = 0; c < cols; ++c) {
+        const int i = r * cols + c;
+        if (value[i] < lo) continue;
+        any = true;
+        if (r == 0 || c == 0 || r == rows - 1 || c == cols - 1) {
+          minimax[i] = value[i];
+          queue.push({value[i], i});
+        }
+      }
+    if (!any) break;
+    while (!queue.empty()) {
+      const Item top = queue.top();
+      queue.pop();
+      if (top.first != minimax[top.second]) continue;
+      const int r = top.second / cols, c = top.second % cols;
+      for (int k = 0; k < 4; ++k) {
+        const int rr = r + dr[k], cc = c + dc[k];
+        if (rr < 0 || cc < 0 || rr >= rows || cc >= cols) continue;
+        const int j = rr * cols + cc;
+        if (value[j] < lo) continue;
+        const int m = std::max(top.first, value[j]);
+        if (m < minimax[j]) {
+          minimax[j] = m;
+          queue.push({m, j});
+        }
+      }
+    }
+    for (int i = 0; i < n; ++i)
+      if (value[i] >= lo && minimax[i] < (1 << 20)) best[i] = std::min(best[i], minimax[i] - lo);
+  }
+  cv::Mat out(rows, cols, CV_8UC1);
+  for (int r = 0; r < rows; ++r)
+    for (int c = 0; c < cols; ++c) {
+      const bool border = r == 0 || c == 0 || r == rows - 1 || c == cols - 1;
+      out.at<std::uint8_t>(r, c) = static_cast<std::uint8_t>(border ? 0 : best[r * cols + c]);
+    }
+  return out;
+}
+
+}  // namespace core
+}  // namespace obstacle_tracker
