@@ -1,0 +1,60 @@
+#!/usr/bin/env bash
+# Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
+#
+# Bounded libFuzzer runs (clang, ASan + UBSan) of every fuzz target in fuzz/: fuzz_params (the
+# parameter loader and setters) and fuzz_pipeline (the core Pipeline on random frames, stamps and
+# parameters). Each starts from seed corpora written by fuzz_make_seeds and runs FUZZ_SECONDS.
+# Any crash, sanitizer report, broken invariant, uncaught exception, input slower than 20 s or
+# RSS above 2 GiB fails the script; the input that did it is kept in $BUILD/artifacts/ (replay:
+# $BUILD/fuzz_NAME $BUILD/artifacts/crash-...; add it to test/core/test_robust_fuzz.cpp).
+#   FUZZ_SECONDS      seconds per target (default 60)
+#   OT_FUZZ_BUILD_DIR build folder (default _build/fuzz)
+#   JOBS              parallel build jobs (default 2)
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+export PATH=/usr/bin:/bin:/usr/sbin:/sbin:$PATH
+BUILD=${OT_FUZZ_BUILD_DIR:-_build/fuzz}
+SECONDS_EACH=${FUZZ_SECONDS:-60}
+JOBS=${JOBS:-2}
+
+if ! command -v clang++ >/dev/null; then
+  echo "FAILED: clang++ not found (Debian packages clang libclang-rt-14-dev, see scripts/setup.sh)"
+  exit 1
+fi
+echo "== fuzz: core-only clang build with libFuzzer + ASan + UBSan in $BUILD"
+CC=clang CXX=clang++ cmake -S . -B "$BUILD" -DOT_CORE_ONLY=ON -DOT_FUZZ=ON \
+  -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+cmake --build "$BUILD" -j"$JOBS" --target fuzzers
+
+rm -rf "$BUILD/seeds"
+"$BUILD/fuzz_make_seeds" "$BUILD/seeds"
+mkdir -p "$BUILD/artifacts"
+export ASAN_OPTIONS="halt_on_error=1:detect_leaks=1:abort_on_error=0"
+export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
+status=0
+ran=0
+for target in "$BUILD"/fuzz_*; do
+  name=$(basename "$target")
+  [ -x "$target" ] && [ "$name" != fuzz_make_seeds ] || continue
+  ran=$((ran + 1))
+  corpus=$BUILD/corpus/$name
+  mkdir -p "$corpus"
+  log=$BUILD/$name.log
+  echo "== fuzz: $name for ${SECONDS_EACH}s (corpus $corpus, seeds $BUILD/seeds/$name, log $log)"
+  if "$target" -max_total_time="$SECONDS_EACH" -timeout=20 -rss_limit_mb=2048 -max_len=8192 \
+      -print_final_stats=1 -artifact_prefix="$BUILD/artifacts/$name-" \
+      "$corpus" "$BUILD/seeds/$name" >"$log" 2>&1; then
+    grep -E '^stat::(number_of_executed_units|average_exec_per_sec|new_units_added)' "$log" || true
+    echo "== fuzz: $name clean"
+  else
+    echo "FAILED: $name found a problem; last lines of $log:"
+    tail -n 60 "$log"
+    ls -l "$BUILD/artifacts/" | grep "$name" || true
+    status=1
+  fi
+done
+if [ "$ran" -eq 0 ]; then
+  echo "FAILED: no fuzz target was built"
+  exit 1
+fi
+exit $status
