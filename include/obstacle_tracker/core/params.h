@@ -42,6 +42,8 @@ namespace core {
   X(int, saliency_max_side, 300, 32, 4096, "px",                                                   \
     "longer side of the image the whole-frame saliency map is computed on")                       \
   X(int, saliency_passes, 3, 1, 10, "", "raster-scan passes of FastMBD")                           \
+  X(int, saliency_median, 0, 0, 7, "px",                                                           \
+    "median filter aperture applied before FastMBD (0 = off; MB+ uses 5)")                        \
   X(bool, saliency_backgroundness, false, false, true, "",                                         \
     "add MB+'s image-border contrast (backgroundness) map")                                       \
   X(bool, saliency_postprocess, false, false, true, "",                                            \

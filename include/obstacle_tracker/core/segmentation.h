@@ -1,0 +1,72 @@
+// Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
+//
+// Building blocks of the saliency detector, exposed for tests, benchmarks and tools: the MBD
+// saliency map of an image (FastMBD + optional MB+ terms) and the Otsu / connected-regions step
+// that turns any 8-bit saliency map into ranked SalientRegions.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "obstacle_tracker/core/params.h"
+#include "obstacle_tracker/core/saliency.h"
+
+namespace obstacle_tracker {
+namespace core {
+
+// A memory block that hands out cv::Mat views; it grows only when a larger view is asked for,
+// so a sequence of calls with varying sizes stops allocating once the largest size was seen.
+class MatArena {
+ public:
+  cv::Mat get(int rows, int cols, int type);
+
+ private:
+  std::vector<std::uint8_t> memory_;
+};
+
+// MBD saliency map (CV_8U, 0..255, max-normalised) of `image` (CV_8UC1 or CV_8UC3 BGR), computed
+// at the image's own resolution. Colour: CIE Lab (8-bit OpenCV scaling), the three channel MBD
+// maps summed. Options from Params: saliency_median, saliency_passes,
+// saliency_backgroundness, saliency_postprocess.
+class MbdSaliency {
+ public:
+  // `out` must be a CV_8UC1 Mat of image.size() (a view is fine); it is written in place.
+  void compute(const cv::Mat& image, const Params& params, cv::Mat& out);
+
+ private:
+  MatArena lab_, median_, dist_, upper_, lower_, fmap_, fbg_, tmp_a_, tmp_b_;
+};
+
+// Otsu threshold (cv::threshold THRESH_OTSU), 8-connected regions, statistics, filtering and
+// ranking. Regions are mapped to frame coordinates with map pixel (c, r) -> frame
+// (offset.x + c * sx, offset.y + r * sy).
+class RegionExtractor {
+ public:
+  struct Geometry {
+    cv::Point2f offset{0.0f, 0.0f};  // frame position of map pixel (0, 0)'s corner
+    float sx = 1.0f, sy = 1.0f;      // frame pixels per map pixel
+    double frame_area = 0.0;         // for max_object_area_fraction
+    bool centre_prior = false;       // windowed mode: favour regions near the map centre
+  };
+  // Returns the Otsu threshold used.
+  double extract(const cv::Mat& map, const Geometry& geometry, const Params& params,
+                 std::vector<SalientRegion>& regions);
+  const cv::Mat& binary() const { return binary_; }
+
+ private:
+  struct Accumulator {
+    int area, x0, y0, x1, y1;
+    std::uint64_t sum;
+  };
+  MatArena binary_arena_, labels_arena_;
+  cv::Mat binary_, labels_;
+  std::vector<Accumulator> acc_;
+};
+
+// Ranking score of a region (documented in saliency.cpp): saliency mass = area * mean saliency,
+// times a centre prior in windowed mode.
+
+}  // namespace core
+}  // namespace obstacle_tracker
