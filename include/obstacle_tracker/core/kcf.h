@@ -17,13 +17,29 @@ struct KcfResult {
   cv::Rect2f box;            // new box in frame pixels
   float peak = 0.0f;         // raw maximum of the response (the paper's confidence)
   float psr = 0.0f;          // peak-to-sidelobe ratio
-  float confidence = 0.0f;   // [0, 1], mapping documented in kcf.cpp
+  float confidence = 0.0f;   // [0, 1], mapping documented below (KcfTracker)
   float scale_change = 1.0f; // box size ratio against the previous frame
   bool model_updated = false;
 };
 
+// Confidence mapping (also in README "Tracker (KCF)"):
+//   c_peak = clamp((peak) / kConfidencePeakFull, 0, 1)
+//   c_psr  = clamp((psr - kConfidencePsrZero) / (kConfidencePsrFull - kConfidencePsrZero), 0, 1)
+//   confidence = sqrt(c_peak * c_psr)
+// i.e. the geometric mean of the raw response peak (1 on the training sample itself) and the
+// peak-to-sidelobe ratio, each scaled to [0, 1]. Either a flat response (low PSR) or a weak peak
+// pulls the confidence down. The model learns only when confidence >= Params::learn_threshold;
+// the pipeline re-detects when the raw peak < Params::peak_threshold (the paper's test).
+//
+// Bad input (empty frame, a type other than CV_8UC1/CV_8UC3, a box that is not finite, smaller
+// than 1x1 px or outside the frame) throws std::invalid_argument; update/evaluate before init
+// throw std::logic_error. Parameters are clamped into their ranges (core::validate).
 class KcfTracker {
  public:
+  static constexpr float kConfidencePeakFull = 0.5f;
+  static constexpr float kConfidencePsrZero = 4.0f;
+  static constexpr float kConfidencePsrFull = 14.0f;
+
   explicit KcfTracker(const Params& params = Params());
   ~KcfTracker();
   KcfTracker(const KcfTracker&) = delete;
@@ -46,6 +62,13 @@ class KcfTracker {
 
   bool initialized() const;
   cv::Rect2f box() const;
+
+  // The validated parameters in use.
+  const Params& params() const;
+  // The confidence mapping above.
+  static float confidenceFrom(float peak, float psr);
+  // Cells of the filter template (cols x rows); empty before init.
+  cv::Size templateCells() const;
 
  private:
   struct Impl;

@@ -62,7 +62,11 @@ namespace core {
   X(double, kcf_output_sigma_factor, 0.1, 0.01, 1.0, "",                                           \
     "label Gaussian sigma as a fraction of the target size")                                      \
   X(int, scale_count, 3, 1, 33, "", "scales searched per frame (1 = no scale estimation)")         \
-  X(double, scale_step, 1.05, 1.0, 1.5, "", "ratio between neighbouring scales")
+  X(double, scale_step, 1.05, 1.0, 1.5, "", "ratio between neighbouring scales")                 \
+  X(double, scale_penalty, 0.98, 0.5, 1.0, "",                                                     \
+    "factor on the response peak of non-unit scales (favours keeping the size)")                  \
+  X(double, kcf_min_window, 16.0, 0.0, 1024.0, "px",                                               \
+    "smallest side of the filter window in frame pixels (context for tiny targets)")
 
 #define OT_PARAMS(X) OT_LOOP_PARAMS(X) OT_SALIENCY_PARAMS(X) OT_TRACKER_PARAMS(X)
 

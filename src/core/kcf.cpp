@@ -1,0 +1,509 @@
+// Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
+//
+// Kernelized correlation filter, written from Henriques, Caseiro, Martins, Batista, "High-Speed
+// Tracking with Kernelized Correlation Filters", TPAMI 37(3), 2015 (Gaussian kernel correlation,
+// eq. 31; training, eq. 17; detection, eq. 22), with multi-channel fHOG + grey features
+// (fhog.h), a fixed template size, a search over a few scales (as SAMF, Li & Zhu, ECCV-W 2014)
+// and a confidence from the peak and the peak-to-sidelobe ratio (Bolme et al., CVPR 2010).
+#include "obstacle_tracker/core/kcf.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <opencv2/imgproc.hpp>
+
+#include "obstacle_tracker/core/fhog.h"
+
+namespace obstacle_tracker {
+namespace core {
+
+namespace {
+
+constexpr int kChannels = FhogExtractor::kChannels;
+constexpr int kPsrExclusion = 5;  // sidelobe excludes the 11x11 cells around the peak (MOSSE)
+constexpr int kMinCells = 8;        // smallest side of the cell grid
+constexpr float kMaxWindowAspect = 2.0f;  // longer / shorter side of the filter window, at most
+constexpr float kMinTargetSide = 4.0f;    // scale search never shrinks a side below this (px)
+constexpr float kMaxPsr = 100.0f;
+
+float clamp01(float v) { return std::min(1.0f, std::max(0.0f, v)); }
+
+bool finiteBox(const cv::Rect2f& b) {
+  return std::isfinite(b.x) && std::isfinite(b.y) && std::isfinite(b.width) &&
+         std::isfinite(b.height);
+}
+
+void checkFrame(const cv::Mat& frame, const char* who) {
+  if (frame.empty()) throw std::invalid_argument(std::string(who) + ": empty frame");
+  if (frame.type() != CV_8UC1 && frame.type() != CV_8UC3) {
+    throw std::invalid_argument(std::string(who) + ": frame must be CV_8UC1 or CV_8UC3 (BGR)");
+  }
+}
+
+void checkBox(const cv::Mat& frame, const cv::Rect2f& box, const char* who) {
+  if (!finiteBox(box)) throw std::invalid_argument(std::string(who) + ": box is not finite");
+  if (!(box.width >= 1.0f) || !(box.height >= 1.0f)) {
+    throw std::invalid_argument(std::string(who) + ": box must be at least 1x1 pixel");
+  }
+  const cv::Rect2f frame_rect(0.0f, 0.0f, static_cast<float>(frame.cols),
+                              static_cast<float>(frame.rows));
+  if ((box & frame_rect).area() <= 0.0f) {
+    throw std::invalid_argument(std::string(who) + ": box does not overlap the frame");
+  }
+}
+
+// Interleaved complex (CV_32FC2) element-wise helpers on buffers of the same size.
+// acc += a .* conj(b), over `count` complex values.
+inline void accumulateConjProduct(const float* a, const float* b, float* acc, int count) {
+  for (int i = 0; i < 2 * count; i += 2) {
+    const float ar = a[i], ai = a[i + 1], br = b[i], bi = b[i + 1];
+    acc[i] += ar * br + ai * bi;
+    acc[i + 1] += ai * br - ar * bi;
+  }
+}
+
+// The confidence mapping (documented in kcf.h): geometric mean of a peak term and a PSR term.
+float confidenceOf(float peak, float psr) {
+  const float c_peak = clamp01(peak / KcfTracker::kConfidencePeakFull);
+  const float c_psr = clamp01((psr - KcfTracker::kConfidencePsrZero) /
+                              (KcfTracker::kConfidencePsrFull - KcfTracker::kConfidencePsrZero));
+  return std::sqrt(c_peak * c_psr);
+}
+
+}  // namespace
+
+struct KcfTracker::Impl {
+  Params params;
+  bool initialized = false;
+
+  // Geometry, fixed at init.
+  int cell = 4;
+  int cols = 0, rows = 0;  // cells of the template
+  int tw = 0, th = 0;      // template pixels (cols * cell, rows * cell)
+  cv::Point2f center;
+  cv::Size2f target;       // current target size, frame pixels
+  cv::Size2f window;       // current window size, frame pixels (window / target is fixed)
+  cv::Size2f min_target, max_target;
+  std::vector<float> scales;
+
+  // Buffers, made once per template size.
+  FhogExtractor fhog;
+  cv::Mat patch, inter;    // template-size patch; intermediate for area downscaling
+  cv::Mat feat;            // (C * rows) x cols, CV_32F, windowed features
+  cv::Mat cos_window;      // rows x cols
+  cv::Mat yf;              // label spectrum, rows x cols CV_32FC2
+  cv::Mat model_xf;        // (C * rows) x cols CV_32FC2
+  cv::Mat model_alphaf;    // rows x cols CV_32FC2
+  float model_xx = 0.0f;   // ||x_model||^2
+  cv::Mat zf;              // (C * rows) x cols CV_32FC2, features of the sample being tested
+  cv::Mat corr_f, corr, k, kf, resp_f;
+  std::vector<cv::Mat> resp;  // one response per scale
+  cv::Mat new_alphaf;
+
+  explicit Impl(const Params& p) { setParams(p); }
+
+  void setParams(const Params& p) {
+    params = p;
+    validate(params);
+  }
+
+  // Frame window (centre c, size ws) -> template patch, border replication, area-averaged when
+  // shrinking by more than 1.5 so that large targets are not aliased.
+  void extractPatch(const cv::Mat& frame, cv::Point2f c, cv::Size2f ws) {
+    patch.create(th, tw, frame.type());
+    const double fx = ws.width / tw;
+    const double fy = ws.height / th;
+    const double x0 = c.x - ws.width * 0.5;
+    const double y0 = c.y - ws.height * 0.5;
+    const cv::Rect frame_rect(0, 0, frame.cols, frame.rows);
+    const cv::Rect roi = cv::Rect(static_cast<int>(std::floor(x0)), static_cast<int>(std::floor(y0)),
+                                  static_cast<int>(std::ceil(x0 + ws.width)) -
+                                      static_cast<int>(std::floor(x0)),
+                                  static_cast<int>(std::ceil(y0 + ws.height)) -
+                                      static_cast<int>(std::floor(y0))) &
+                         frame_rect;
+    if ((fx > 1.5 || fy > 1.5) && roi.width >= 2 && roi.height >= 2) {
+      const int iw = std::max(1, std::min(tw + 2, static_cast<int>(std::lround(roi.width / fx))));
+      const int ih = std::max(1, std::min(th + 2, static_cast<int>(std::lround(roi.height / fy))));
+      if (inter.rows < th + 2 || inter.cols < tw + 2 || inter.type() != frame.type()) {
+        inter.create(th + 2, tw + 2, frame.type());
+      }
+      cv::Mat small = inter(cv::Rect(0, 0, iw, ih));
+      cv::resize(frame(roi), small, small.size(), 0, 0, cv::INTER_AREA);
+      const double sx = static_cast<double>(roi.width) / iw;  // frame px per intermediate px
+      const double sy = static_cast<double>(roi.height) / ih;
+      // dst u -> frame x = x0 + (u + 0.5) fx - 0.5 -> intermediate i = (x - roi.x + 0.5) / sx - 0.5
+      const cv::Matx23d m(fx / sx, 0.0, (x0 - roi.x + 0.5 * fx) / sx - 0.5,
+                          0.0, fy / sy, (y0 - roi.y + 0.5 * fy) / sy - 0.5);
+      cv::warpAffine(small, patch, m, patch.size(), cv::INTER_LINEAR | cv::WARP_INVERSE_MAP,
+                     cv::BORDER_REPLICATE);
+    } else {
+      const cv::Matx23d m(fx, 0.0, x0 + 0.5 * fx - 0.5, 0.0, fy, y0 + 0.5 * fy - 0.5);
+      cv::warpAffine(frame, patch, m, patch.size(), cv::INTER_LINEAR | cv::WARP_INVERSE_MAP,
+                     cv::BORDER_REPLICATE);
+    }
+  }
+
+  // Features of the window -> zf (spectra), returns ||z||^2.
+  float featuresSpectrum(const cv::Mat& frame, cv::Point2f c, cv::Size2f ws, cv::Mat& out_f) {
+    extractPatch(frame, c, ws);
+    fhog.compute(patch, cell, feat);
+    out_f.create(kChannels * rows, cols, CV_32FC2);
+    double energy = 0.0;
+    for (int ch = 0; ch < kChannels; ++ch) {
+      cv::Mat plane = feat.rowRange(ch * rows, (ch + 1) * rows);
+      cv::multiply(plane, cos_window, plane);
+      energy += plane.dot(plane);
+      cv::Mat dst = out_f.rowRange(ch * rows, (ch + 1) * rows);
+      cv::dft(plane, dst, cv::DFT_COMPLEX_OUTPUT);
+    }
+    return static_cast<float>(energy);
+  }
+
+  // Gaussian kernel correlation of the model x with z (Henriques 2015, eq. 31), normalised by
+  // N = rows * cols * C so that the kernel width does not depend on the template size.
+  // Result: kf = F(k^{xz}).
+  void gaussianCorrelation(const cv::Mat& xf, float xx, const cv::Mat& zf_in, float zz) {
+    corr_f.create(rows, cols, CV_32FC2);
+    corr_f.setTo(0.0f);
+    const int n = rows * cols;
+    for (int ch = 0; ch < kChannels; ++ch) {
+      accumulateConjProduct(zf_in.ptr<float>(ch * rows), xf.ptr<float>(ch * rows),
+                            corr_f.ptr<float>(), n);
+    }
+    cv::dft(corr_f, corr, cv::DFT_INVERSE | cv::DFT_REAL_OUTPUT | cv::DFT_SCALE);
+    const float sigma = static_cast<float>(params.kcf_kernel_sigma);
+    const float scale = -1.0f / (sigma * sigma * static_cast<float>(n * kChannels));
+    k.create(rows, cols, CV_32F);
+    const float* cp = corr.ptr<float>();
+    float* kp = k.ptr<float>();
+    for (int i = 0; i < n; ++i) {
+      const float d = std::max(0.0f, xx + zz - 2.0f * cp[i]);
+      kp[i] = d * scale;
+    }
+    cv::exp(k, k);
+    cv::dft(k, kf, cv::DFT_COMPLEX_OUTPUT);
+  }
+
+  void buildGeometry(const cv::Mat& frame, const cv::Rect2f& box) {
+    cell = params.kcf_cell_size;
+    const float pad = 1.0f + static_cast<float>(params.kcf_padding);
+    const float min_win = static_cast<float>(params.kcf_min_window);
+    float ww = std::max(box.width * pad, min_win);
+    float wh = std::max(box.height * pad, min_win);
+    // Keep the window's aspect within 1:kMaxWindowAspect so a thin target still has context
+    // (and enough cells) along its short side.
+    ww = std::max(ww, wh / kMaxWindowAspect);
+    wh = std::max(wh, ww / kMaxWindowAspect);
+    const float longer = std::max(ww, wh);
+    const int long_cells =
+        cv::getOptimalDFTSize(std::max(kMinCells, static_cast<int>(std::lround(
+                                                      static_cast<double>(params.kcf_template_size) / cell))));
+    const int short_cells = cv::getOptimalDFTSize(std::max(
+        kMinCells, static_cast<int>(std::lround(long_cells * std::min(ww, wh) / longer))));
+    cols = ww >= wh ? long_cells : short_cells;
+    rows = ww >= wh ? short_cells : long_cells;
+    tw = cols * cell;
+    th = rows * cell;
+    center = cv::Point2f(box.x + box.width * 0.5f, box.y + box.height * 0.5f);
+    target = box.size();
+    window = cv::Size2f(ww, wh);
+    min_target = cv::Size2f(std::min(box.width, kMinTargetSide), std::min(box.height, kMinTargetSide));
+    max_target = cv::Size2f(std::max(box.width, static_cast<float>(frame.cols)),
+                            std::max(box.height, static_cast<float>(frame.rows)));
+
+    cv::Mat hy, hx;
+    cv::createHanningWindow(cos_window, cv::Size(cols, rows), CV_32F);
+    // createHanningWindow puts zeros on the border; fine for a correlation filter.
+
+    // Label: Gaussian on the cyclic distance from (0, 0) (Henriques 2015, sec. 5.1), sigma from
+    // the target size in cells.
+    const float target_cells_w = target.width * (static_cast<float>(tw) / window.width) / cell;
+    const float target_cells_h = target.height * (static_cast<float>(th) / window.height) / cell;
+    const float sigma = static_cast<float>(params.kcf_output_sigma_factor) *
+                        std::sqrt(target_cells_w * target_cells_h);
+    cv::Mat y(rows, cols, CV_32F);
+    for (int r = 0; r < rows; ++r) {
+      const int dr = std::min(r, rows - r);
+      for (int c = 0; c < cols; ++c) {
+        const int dc = std::min(c, cols - c);
+        y.at<float>(r, c) = std::exp(-0.5f * static_cast<float>(dr * dr + dc * dc) / (sigma * sigma));
+      }
+    }
+    cv::dft(y, yf, cv::DFT_COMPLEX_OUTPUT);
+
+    const int count = std::max(1, params.scale_count);
+    scales.resize(count);
+    for (int i = 0; i < count; ++i) {
+      scales[i] = static_cast<float>(std::pow(params.scale_step, i - (count - 1) / 2.0));
+    }
+    resp.resize(count);
+    for (auto& r : resp) r.create(rows, cols, CV_32F);
+    model_xf.create(kChannels * rows, cols, CV_32FC2);
+    zf.create(kChannels * rows, cols, CV_32FC2);
+    model_alphaf.create(rows, cols, CV_32FC2);
+    new_alphaf.create(rows, cols, CV_32FC2);
+  }
+
+  // Trains on the window at the current centre (Henriques 2015, eq. 17) and interpolates the model
+  // with rate eta (1 = replace).
+  void train(const cv::Mat& frame, float eta) {
+    const float xx = featuresSpectrum(frame, center, window, zf);
+    trainOnSpectrum(xx, eta);
+  }
+
+  // Same, on the features already in zf (||z||^2 = xx).
+  void trainOnSpectrum(float xx, float eta) {
+    gaussianCorrelation(zf, xx, zf, xx);
+    // alpha^ = y^ / (k^xx + lambda)
+    const float lambda = static_cast<float>(params.kcf_lambda);
+    const int n = rows * cols;
+    const float* yp = yf.ptr<float>();
+    const float* kp = kf.ptr<float>();
+    float* ap = new_alphaf.ptr<float>();
+    for (int i = 0; i < 2 * n; i += 2) {
+      const float br = kp[i] + lambda, bi = kp[i + 1];
+      const float inv = 1.0f / (br * br + bi * bi);
+      ap[i] = (yp[i] * br + yp[i + 1] * bi) * inv;
+      ap[i + 1] = (yp[i + 1] * br - yp[i] * bi) * inv;
+    }
+    if (eta >= 1.0f) {
+      zf.copyTo(model_xf);
+      new_alphaf.copyTo(model_alphaf);
+    } else {
+      cv::addWeighted(model_xf, 1.0 - eta, zf, eta, 0.0, model_xf);
+      cv::addWeighted(model_alphaf, 1.0 - eta, new_alphaf, eta, 0.0, model_alphaf);
+    }
+    // ||x_model||^2 by Parseval (unnormalised forward DFT).
+    model_xx = static_cast<float>(cv::norm(model_xf, cv::NORM_L2SQR) / static_cast<double>(n));
+  }
+
+  // Response of the model on the window (c, ws) into out (Henriques 2015, eq. 22).
+  void respond(const cv::Mat& frame, cv::Point2f c, cv::Size2f ws, cv::Mat& out) {
+    const float zz = featuresSpectrum(frame, c, ws, zf);
+    gaussianCorrelation(model_xf, model_xx, zf, zz);
+    cv::mulSpectrums(kf, model_alphaf, resp_f, 0, false);
+    cv::dft(resp_f, out, cv::DFT_INVERSE | cv::DFT_REAL_OUTPUT | cv::DFT_SCALE);
+  }
+
+  // Sub-cell peak position by a parabola through log values (exact for a Gaussian peak), plain
+  // parabola when a neighbour is not positive. Returns the peak's cyclic displacement in cells.
+  cv::Point2f subCellPeak(const cv::Mat& r, cv::Point p) const {
+    auto at = [&](int y, int x) {
+      return r.at<float>((y + rows) % rows, (x + cols) % cols);
+    };
+    auto offset = [](float l, float c, float rr) {
+      if (l > 0.0f && c > 0.0f && rr > 0.0f) {
+        const float ll = std::log(l), lc = std::log(c), lr = std::log(rr);
+        const float den = ll - 2.0f * lc + lr;
+        if (den < 0.0f) return std::max(-0.5f, std::min(0.5f, 0.5f * (ll - lr) / den));
+      }
+      const float den = l - 2.0f * c + rr;
+      if (den < 0.0f) return std::max(-0.5f, std::min(0.5f, 0.5f * (l - rr) / den));
+      return 0.0f;
+    };
+    const float c0 = at(p.y, p.x);
+    float dx = static_cast<float>(p.x) + offset(at(p.y, p.x - 1), c0, at(p.y, p.x + 1));
+    float dy = static_cast<float>(p.y) + offset(at(p.y - 1, p.x), c0, at(p.y + 1, p.x));
+    if (dx > cols * 0.5f) dx -= static_cast<float>(cols);
+    if (dy > rows * 0.5f) dy -= static_cast<float>(rows);
+    return cv::Point2f(dx, dy);
+  }
+
+  // PSR (Bolme et al. 2010): (peak - mean) / std of the response outside the 11x11 cells around
+  // the peak (cyclic).
+  float psrOf(const cv::Mat& r, cv::Point p, float peak) const {
+    double sum = 0.0, sum2 = 0.0;
+    int count = 0;
+    for (int y = 0; y < rows; ++y) {
+      int dy = std::abs(y - p.y);
+      dy = std::min(dy, rows - dy);
+      const float* rp = r.ptr<float>(y);
+      for (int x = 0; x < cols; ++x) {
+        int dx = std::abs(x - p.x);
+        dx = std::min(dx, cols - dx);
+        if (dy <= kPsrExclusion && dx <= kPsrExclusion) continue;
+        sum += rp[x];
+        sum2 += static_cast<double>(rp[x]) * rp[x];
+        ++count;
+      }
+    }
+    if (count < 2) return 0.0f;
+    const double mean = sum / count;
+    const double var = std::max(0.0, sum2 / count - mean * mean);
+    const double sd = std::sqrt(var);
+    if (sd < 1e-12) return peak > mean ? kMaxPsr : 0.0f;
+    return static_cast<float>(std::min<double>(kMaxPsr, (peak - mean) / sd));
+  }
+
+  cv::Rect2f boxAt(cv::Point2f c, cv::Size2f s) const {
+    return cv::Rect2f(c.x - s.width * 0.5f, c.y - s.height * 0.5f, s.width, s.height);
+  }
+};
+
+KcfTracker::KcfTracker(const Params& params) : impl_(new Impl(params)) {}
+
+KcfTracker::~KcfTracker() { delete impl_; }
+
+KcfTracker::KcfTracker(KcfTracker&& other) noexcept : impl_(other.impl_) { other.impl_ = nullptr; }
+
+KcfTracker& KcfTracker::operator=(KcfTracker&& other) noexcept {
+  if (this != &other) {
+    delete impl_;
+    impl_ = other.impl_;
+    other.impl_ = nullptr;
+  }
+  return *this;
+}
+
+namespace {
+void checkImpl(const void* impl) {
+  if (impl == nullptr) throw std::logic_error("KcfTracker: used after being moved from");
+}
+}  // namespace
+
+void KcfTracker::setParams(const Params& params) {
+  if (impl_ == nullptr) {
+    impl_ = new Impl(params);
+    return;
+  }
+  impl_->setParams(params);
+}
+
+const Params& KcfTracker::params() const {
+  checkImpl(impl_);
+  return impl_->params;
+}
+
+void KcfTracker::init(const cv::Mat& frame, const cv::Rect2f& box) {
+  checkImpl(impl_);
+  checkFrame(frame, "KcfTracker::init");
+  checkBox(frame, box, "KcfTracker::init");
+  impl_->initialized = false;
+  impl_->buildGeometry(frame, box);
+  impl_->train(frame, 1.0f);
+  impl_->initialized = true;
+}
+
+KcfResult KcfTracker::update(const cv::Mat& frame) {
+  checkImpl(impl_);
+  checkFrame(frame, "KcfTracker::update");
+  if (!impl_->initialized) throw std::logic_error("KcfTracker::update: not initialised");
+  Impl& m = *impl_;
+  const Params& p = m.params;
+
+  // Detect at each scale; keep the best (non-unit scales slightly penalised).
+  int best = 0;
+  float best_score = -1e30f;
+  cv::Point best_loc;
+  const int count = static_cast<int>(m.scales.size());
+  for (int i = 0; i < count; ++i) {
+    const float s = m.scales[i];
+    m.respond(frame, m.center, cv::Size2f(m.window.width * s, m.window.height * s), m.resp[i]);
+    double mx;
+    cv::Point loc;
+    cv::minMaxLoc(m.resp[i], nullptr, &mx, nullptr, &loc);
+    const float score = static_cast<float>(mx) *
+                        (std::abs(s - 1.0f) < 1e-6f ? 1.0f : static_cast<float>(p.scale_penalty));
+    if (score > best_score) {
+      best_score = score;
+      best = i;
+      best_loc = loc;
+    }
+  }
+  const cv::Mat& r = m.resp[best];
+  const float s = m.scales[best];
+  KcfResult result;
+  result.peak = r.at<float>(best_loc);
+  result.psr = m.psrOf(r, best_loc, result.peak);
+  result.confidence = confidenceOf(result.peak, result.psr);
+
+  const cv::Point2f d = m.subCellPeak(r, best_loc);
+  const cv::Size2f ws(m.window.width * s, m.window.height * s);
+  m.center.x += d.x * m.cell * ws.width / m.tw;
+  m.center.y += d.y * m.cell * ws.height / m.th;
+  // Keep the centre on the frame so the window always sees it.
+  m.center.x = std::min(std::max(m.center.x, 0.0f), static_cast<float>(frame.cols));
+  m.center.y = std::min(std::max(m.center.y, 0.0f), static_cast<float>(frame.rows));
+
+  // Scale, bounded so a drifting filter cannot blow the box up or shrink it to nothing.
+  float applied = s;
+  applied = std::min(applied, m.max_target.width / m.target.width);
+  applied = std::min(applied, m.max_target.height / m.target.height);
+  applied = std::max(applied, m.min_target.width / m.target.width);
+  applied = std::max(applied, m.min_target.height / m.target.height);
+  m.target = cv::Size2f(m.target.width * applied, m.target.height * applied);
+  m.window = cv::Size2f(m.window.width * applied, m.window.height * applied);
+  result.scale_change = applied;
+
+  // Refinement: features at the new centre (needed for training anyway) are correlated with the
+  // model once more and the small residual offset is added. This removes most of the bias of the
+  // cosine window towards zero motion (about 5 % of the shift) for the price of one kernel
+  // correlation; the training sample is then off by the residual only (a few hundredths of a cell).
+  const float zz = m.featuresSpectrum(frame, m.center, m.window, m.zf);
+  m.gaussianCorrelation(m.model_xf, m.model_xx, m.zf, zz);
+  cv::mulSpectrums(m.kf, m.model_alphaf, m.resp_f, 0, false);
+  cv::dft(m.resp_f, m.resp[0], cv::DFT_INVERSE | cv::DFT_REAL_OUTPUT | cv::DFT_SCALE);
+  cv::Point loc;
+  cv::minMaxLoc(m.resp[0], nullptr, nullptr, nullptr, &loc);
+  const cv::Point2f residual = m.subCellPeak(m.resp[0], loc);
+  if (std::abs(residual.x) <= 1.0f && std::abs(residual.y) <= 1.0f) {
+    m.center.x += residual.x * m.cell * m.window.width / m.tw;
+    m.center.y += residual.y * m.cell * m.window.height / m.th;
+  }
+  result.box = m.boxAt(m.center, m.target);
+
+  if (result.confidence >= p.learn_threshold && p.learning_rate > 0.0) {
+    m.trainOnSpectrum(zz, static_cast<float>(p.learning_rate));
+    result.model_updated = true;
+  }
+  return result;
+}
+
+KcfResult KcfTracker::evaluate(const cv::Mat& frame, const cv::Rect2f& candidate) {
+  checkImpl(impl_);
+  checkFrame(frame, "KcfTracker::evaluate");
+  checkBox(frame, candidate, "KcfTracker::evaluate");
+  if (!impl_->initialized) throw std::logic_error("KcfTracker::evaluate: not initialised");
+  Impl& m = *impl_;
+  const float s = std::sqrt(candidate.area() / m.target.area());
+  const cv::Size2f ws(m.window.width * s, m.window.height * s);
+  const cv::Point2f c(candidate.x + candidate.width * 0.5f, candidate.y + candidate.height * 0.5f);
+  cv::Mat& r = m.resp[0];
+  m.respond(frame, c, ws, r);
+  double mx;
+  cv::Point loc;
+  cv::minMaxLoc(r, nullptr, &mx, nullptr, &loc);
+  KcfResult result;
+  result.peak = static_cast<float>(mx);
+  result.psr = m.psrOf(r, loc, result.peak);
+  result.confidence = confidenceOf(result.peak, result.psr);
+  const cv::Point2f d = m.subCellPeak(r, loc);
+  result.box = cv::Rect2f(candidate.x + d.x * m.cell * ws.width / m.tw,
+                          candidate.y + d.y * m.cell * ws.height / m.th, candidate.width,
+                          candidate.height);
+  result.scale_change = s;
+  result.model_updated = false;
+  return result;
+}
+
+bool KcfTracker::initialized() const { return impl_ != nullptr && impl_->initialized; }
+
+cv::Rect2f KcfTracker::box() const {
+  if (!initialized()) return cv::Rect2f();
+  return impl_->boxAt(impl_->center, impl_->target);
+}
+
+float KcfTracker::confidenceFrom(float peak, float psr) { return confidenceOf(peak, psr); }
+
+cv::Size KcfTracker::templateCells() const {
+  if (!initialized()) return cv::Size();
+  return cv::Size(impl_->cols, impl_->rows);
+}
+
+}  // namespace core
+}  // namespace obstacle_tracker
