@@ -33,44 +33,41 @@ inline std::uint8_t relaxRow(const std::uint8_t* img, const std::uint8_t* nb_u, 
   return changed;
 }
 
-// Serial sweep along one row: pixel c against its neighbour c - step (forward, step = +CN) or
-// c + CN (backward). CN channels are independent chains interleaved in memory.
+// Serial sweep along one row: pixel c against its neighbour c - 1 (forward) or c + 1 (backward).
+// CN channels are independent chains interleaved in memory. The neighbour's U and L are carried
+// in registers and the update is a conditional move, not a branch (the comparison is data
+// dependent and mispredicts on real images).
 template <int CN, bool kForward>
 inline std::uint8_t sweepRow(const std::uint8_t* img, std::uint8_t* d, std::uint8_t* u, std::uint8_t* l,
                              int cols) {
-  std::uint8_t changed = 0;
-  if (kForward) {
-    for (int c = 1; c < cols - 1; ++c) {
-      for (int k = 0; k < CN; ++k) {
-        const int j = c * CN + k, q = j - CN;
-        const std::uint8_t cu = std::max(u[q], img[j]);
-        const std::uint8_t cl = std::min(l[q], img[j]);
-        const std::uint8_t b = static_cast<std::uint8_t>(cu - cl);
-        if (b < d[j]) {
-          d[j] = b;
-          u[j] = cu;
-          l[j] = cl;
-          changed = 1;
-        }
-      }
-    }
-  } else {
-    for (int c = cols - 2; c >= 1; --c) {
-      for (int k = 0; k < CN; ++k) {
-        const int j = c * CN + k, q = j + CN;
-        const std::uint8_t cu = std::max(u[q], img[j]);
-        const std::uint8_t cl = std::min(l[q], img[j]);
-        const std::uint8_t b = static_cast<std::uint8_t>(cu - cl);
-        if (b < d[j]) {
-          d[j] = b;
-          u[j] = cu;
-          l[j] = cl;
-          changed = 1;
-        }
-      }
+  unsigned changed = 0;
+  unsigned pu[CN], pl[CN];
+  const int first = kForward ? 1 : cols - 2;
+  const int step = kForward ? 1 : -1;
+  for (int k = 0; k < CN; ++k) {
+    pu[k] = u[(first - step) * CN + k];
+    pl[k] = l[(first - step) * CN + k];
+  }
+  for (int i = 0, c = first; i < cols - 2; ++i, c += step) {
+    for (int k = 0; k < CN; ++k) {
+      const int j = c * CN + k;
+      const unsigned v = img[j];
+      const unsigned cu = pu[k] > v ? pu[k] : v;
+      const unsigned cl = pl[k] < v ? pl[k] : v;
+      const unsigned b = cu - cl;
+      const unsigned old = d[j];
+      const bool better = b < old;
+      const unsigned nu = better ? cu : u[j];
+      const unsigned nl = better ? cl : l[j];
+      d[j] = static_cast<std::uint8_t>(better ? b : old);
+      u[j] = static_cast<std::uint8_t>(nu);
+      l[j] = static_cast<std::uint8_t>(nl);
+      pu[k] = nu;
+      pl[k] = nl;
+      changed |= better;
     }
   }
-  return changed;
+  return static_cast<std::uint8_t>(changed);
 }
 
 template <int CN>
