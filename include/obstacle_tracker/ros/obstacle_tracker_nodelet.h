@@ -1,0 +1,124 @@
+// Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
+//
+// obstacle_tracker/ObstacleTrackerNodelet: the thin ROS adapter around core::Pipeline.
+//   subscribes  image (image_transport, queue 1, ~image_transport picks the transport)
+//               camera_info (only with ~use_camera_info; exact-time synchronised with image)
+//   publishes   ~obstacles (ObstacleArray, header = the input image's header, one per processed
+//               frame, empty when nothing is there), ~debug_image (overlay, only when subscribed),
+//               /diagnostics
+//   parameters  every core parameter under its params.h name in the private namespace,
+//               ~params_file (YAML, read first), dynamic_reconfigure (ObstacleTracker.cfg),
+//               ~target_frame, ~tf_timeout, ~use_camera_info, ~image_transport,
+//               ~mono16_low_percentile, ~mono16_high_percentile
+// Every callback catches everything: bad input is refused with a throttled log, never thrown
+// into the nodelet manager.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include <diagnostic_updater/diagnostic_updater.h>
+#include <dynamic_reconfigure/server.h>
+#include <image_transport/image_transport.h>
+#include <image_transport/subscriber_filter.h>
+#include <message_filters/subscriber.h>
+#include <message_filters/sync_policies/exact_time.h>
+#include <message_filters/synchronizer.h>
+#include <nodelet/nodelet.h>
+#include <ros/ros.h>
+#include <sensor_msgs/CameraInfo.h>
+#include <sensor_msgs/Image.h>
+#include <tf2_ros/buffer.h>
+#include <tf2_ros/transform_listener.h>
+
+#include "obstacle_tracker/ObstacleArray.h"
+#include "obstacle_tracker/ObstacleTrackerConfig.h"
+#include "obstacle_tracker/core/pipeline.h"
+#include "obstacle_tracker/ros/camera_geometry.h"
+#include "obstacle_tracker/ros/image_conversion.h"
+
+namespace obstacle_tracker {
+
+class ObstacleTrackerNodelet : public nodelet::Nodelet {
+ public:
+  ObstacleTrackerNodelet();
+  ~ObstacleTrackerNodelet() override;
+
+ private:
+  using SyncPolicy = message_filters::sync_policies::ExactTime<sensor_msgs::Image, sensor_msgs::CameraInfo>;
+
+  void onInit() override;
+  void loadParams();
+  void imageCallback(const sensor_msgs::ImageConstPtr& image);
+  void imageInfoCallback(const sensor_msgs::ImageConstPtr& image, const sensor_msgs::CameraInfoConstPtr& info);
+  void countInput(const sensor_msgs::ImageConstPtr& image);
+  void process(const sensor_msgs::ImageConstPtr& image, const sensor_msgs::CameraInfoConstPtr& info);
+  void fillGeometry(const sensor_msgs::Image& image, const sensor_msgs::CameraInfo& info, ObstacleArray& out);
+  void reconfigure(ObstacleTrackerConfig& config, std::uint32_t level);
+  void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
+  void diagnosticsTimer(const ros::WallTimerEvent&);
+
+  // Pipeline and parameters: the pipeline runs in the image callback; dynamic_reconfigure
+  // changes its parameters from another callback (another thread in the standalone node).
+  std::mutex pipeline_mutex_;
+  std::unique_ptr<core::Pipeline> pipeline_;
+  core::Params params_;
+  std::vector<core::Obstacle> obstacles_;  // copy of the last result (reused buffer)
+
+  // Configuration read once in onInit.
+  std::string target_frame_;
+  double tf_timeout_ = 0.05;
+  bool use_camera_info_ = false;
+
+  // ROS interface.
+  std::unique_ptr<image_transport::ImageTransport> it_;
+  image_transport::Subscriber image_sub_;
+  std::unique_ptr<image_transport::SubscriberFilter> image_filter_;
+  std::unique_ptr<message_filters::Subscriber<sensor_msgs::CameraInfo>> info_filter_;
+  std::unique_ptr<message_filters::Synchronizer<SyncPolicy>> sync_;
+  ros::Publisher obstacles_pub_;
+  image_transport::Publisher debug_pub_;
+  boost::recursive_mutex reconfigure_mutex_;
+  std::unique_ptr<dynamic_reconfigure::Server<ObstacleTrackerConfig>> reconfigure_server_;
+  std::unique_ptr<tf2_ros::Buffer> tf_buffer_;
+  std::unique_ptr<tf2_ros::TransformListener> tf_listener_;
+  std::unique_ptr<diagnostic_updater::Updater> updater_;
+  ros::WallTimer diagnostics_timer_;
+
+  // Per-frame helpers (one frame at a time, under frame_mutex_).
+  std::mutex frame_mutex_;
+  bridge::FrameConverter converter_;
+  bridge::CameraGeometry camera_;
+  sensor_msgs::CameraInfo last_info_;
+  bool have_info_ = false;
+  cv::Mat overlay_;
+  bool have_last_ = false;
+  ros::Time last_stamp_;
+  std::uint32_t last_seq_ = 0;
+
+  // Statistics for diagnostics (guarded by stats_mutex_).
+  struct Window {
+    std::uint64_t received = 0;
+    std::uint64_t processed = 0;
+    std::uint64_t dropped = 0;
+    std::uint64_t rejected = 0;
+    double processing_sum = 0.0, processing_max = 0.0;
+    double latency_sum = 0.0, latency_max = 0.0;
+  };
+  std::mutex stats_mutex_;
+  Window window_;
+  Window total_;
+  ros::WallTime window_start_;
+  bool have_input_seq_ = false;
+  std::uint32_t last_input_seq_ = 0;
+  std::uint64_t duplicates_ = 0;
+  std::uint64_t unsynced_since_pair_ = 0;
+  std::size_t last_obstacle_count_ = 0;
+  core::TrackState last_state_ = core::TrackState::kSearching;
+  std::string last_error_;
+};
+
+}  // namespace obstacle_tracker

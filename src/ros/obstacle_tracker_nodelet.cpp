@@ -1,0 +1,408 @@
+// Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
+#include "obstacle_tracker/ros/obstacle_tracker_nodelet.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <sstream>
+
+#include <boost/bind/bind.hpp>
+#include <boost/make_shared.hpp>
+#include <cv_bridge/cv_bridge.h>
+#include <Eigen/Geometry>
+#include <pluginlib/class_list_macros.hpp>
+#include <tf2/exceptions.h>
+
+#include "obstacle_tracker/ros/conversions.h"
+#include "obstacle_tracker/ros/overlay.h"
+
+namespace obstacle_tracker {
+
+namespace {
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string out;
+  for (const std::string& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out;
+}
+
+bool sameCalibration(const sensor_msgs::CameraInfo& a, const sensor_msgs::CameraInfo& b) {
+  return a.width == b.width && a.height == b.height && a.K == b.K && a.D == b.D &&
+         a.distortion_model == b.distortion_model && a.binning_x == b.binning_x &&
+         a.binning_y == b.binning_y && a.roi.x_offset == b.roi.x_offset &&
+         a.roi.y_offset == b.roi.y_offset && a.roi.width == b.roi.width && a.roi.height == b.roi.height;
+}
+
+// Size of the image a camera_info describes (after ROI and binning); 0 when unknown.
+void describedSize(const sensor_msgs::CameraInfo& info, std::uint32_t* width, std::uint32_t* height) {
+  const std::uint32_t bx = std::max<std::uint32_t>(1, info.binning_x);
+  const std::uint32_t by = std::max<std::uint32_t>(1, info.binning_y);
+  *width = (info.roi.width ? info.roi.width : info.width) / bx;
+  *height = (info.roi.height ? info.roi.height : info.height) / by;
+}
+
+}  // namespace
+
+ObstacleTrackerNodelet::ObstacleTrackerNodelet() = default;
+
+ObstacleTrackerNodelet::~ObstacleTrackerNodelet() {
+  // Stop the inputs before the members they use go away.
+  diagnostics_timer_.stop();
+  image_sub_.shutdown();
+  sync_.reset();
+  info_filter_.reset();
+  image_filter_.reset();
+}
+
+void ObstacleTrackerNodelet::loadParams() {
+  ros::NodeHandle& pnh = getPrivateNodeHandle();
+  core::Params params;
+  std::string file;
+  if (pnh.getParam("params_file", file) && !file.empty()) {
+    try {
+      std::vector<std::string> messages;
+      params = core::loadParamsFile(file, &messages, params);
+      for (const std::string& m : messages) NODELET_WARN("%s: %s", file.c_str(), m.c_str());
+      NODELET_INFO("parameters loaded from %s", file.c_str());
+    } catch (const std::exception& e) {
+      NODELET_ERROR("cannot use ~params_file: %s; starting from the defaults", e.what());
+    }
+  }
+  std::vector<std::string> messages;
+  params = bridge::paramsFromRos(pnh, params, &messages);
+  for (const std::string& m : messages) NODELET_WARN("%s", m.c_str());
+  params_ = params;
+}
+
+void ObstacleTrackerNodelet::onInit() {
+  ros::NodeHandle& nh = getNodeHandle();
+  ros::NodeHandle& pnh = getPrivateNodeHandle();
+
+  loadParams();
+  pipeline_.reset(new core::Pipeline(params_));
+
+  pnh.param("target_frame", target_frame_, std::string());
+  pnh.param("tf_timeout", tf_timeout_, 0.05);
+  if (!(tf_timeout_ >= 0.0 && tf_timeout_ <= 10.0)) {
+    NODELET_WARN("~tf_timeout %g outside [0, 10] s; using 0.05", tf_timeout_);
+    tf_timeout_ = 0.05;
+  }
+  pnh.param("use_camera_info", use_camera_info_, false);
+  double low = 1.0, high = 99.0;
+  pnh.param("mono16_low_percentile", low, low);
+  pnh.param("mono16_high_percentile", high, high);
+  try {
+    converter_.stretch().setPercentiles(low, high);
+  } catch (const std::exception& e) {
+    NODELET_ERROR("%s; using 1 and 99", e.what());
+  }
+  if (!target_frame_.empty()) {
+    tf_buffer_.reset(new tf2_ros::Buffer());
+    tf_listener_.reset(new tf2_ros::TransformListener(*tf_buffer_, nh));
+  }
+
+  obstacles_pub_ = pnh.advertise<ObstacleArray>("obstacles", 1);
+  image_transport::ImageTransport private_it(pnh);
+  debug_pub_ = private_it.advertise("debug_image", 1);
+
+  // dynamic_reconfigure: start from the parameters just read (file + ROS), not from the .cfg
+  // defaults, then apply every later change through the callback.
+  reconfigure_server_.reset(new dynamic_reconfigure::Server<ObstacleTrackerConfig>(reconfigure_mutex_, pnh));
+  reconfigure_server_->updateConfig(bridge::configFromParams(params_, ObstacleTrackerConfig::__getDefault__()));
+  reconfigure_server_->setCallback(boost::bind(&ObstacleTrackerNodelet::reconfigure, this,
+                                               boost::placeholders::_1, boost::placeholders::_2));
+  const std::vector<std::string> missing = bridge::paramsMissingFromConfig();
+  if (!missing.empty()) {
+    NODELET_WARN("not in dynamic_reconfigure (settable as ROS parameters only): %s", joined(missing).c_str());
+  }
+
+  updater_.reset(new diagnostic_updater::Updater(nh, pnh, getName()));
+  updater_->setHardwareID("none");
+  updater_->add("obstacle tracker", this, &ObstacleTrackerNodelet::diagnose);
+  window_start_ = ros::WallTime::now();
+  diagnostics_timer_ = pnh.createWallTimer(ros::WallDuration(0.25), &ObstacleTrackerNodelet::diagnosticsTimer, this);
+
+  it_.reset(new image_transport::ImageTransport(nh));
+  const image_transport::TransportHints hints("raw", ros::TransportHints(), pnh);
+  if (use_camera_info_) {
+    image_filter_.reset(new image_transport::SubscriberFilter(*it_, "image", 1, hints));
+    image_filter_->registerCallback(boost::bind(&ObstacleTrackerNodelet::countInput, this, boost::placeholders::_1));
+    info_filter_.reset(new message_filters::Subscriber<sensor_msgs::CameraInfo>(nh, "camera_info", 1));
+    sync_.reset(new message_filters::Synchronizer<SyncPolicy>(SyncPolicy(4), *image_filter_, *info_filter_));
+    sync_->registerCallback(boost::bind(&ObstacleTrackerNodelet::imageInfoCallback, this,
+                                        boost::placeholders::_1, boost::placeholders::_2));
+    NODELET_INFO("tracking %s (transport '%s') with camera_info %s; publishing %s",
+                 nh.resolveName("image").c_str(), hints.getTransport().c_str(),
+                 nh.resolveName("camera_info").c_str(), obstacles_pub_.getTopic().c_str());
+  } else {
+    image_sub_ = it_->subscribe("image", 1, &ObstacleTrackerNodelet::imageCallback, this, hints);
+    NODELET_INFO("tracking %s (transport '%s'), no camera_info (no bearings); publishing %s",
+                 nh.resolveName("image").c_str(), hints.getTransport().c_str(),
+                 obstacles_pub_.getTopic().c_str());
+  }
+}
+
+void ObstacleTrackerNodelet::countInput(const sensor_msgs::ImageConstPtr& image) {
+  try {
+    std::lock_guard<std::mutex> lock(stats_mutex_);
+    ++window_.received;
+    ++total_.received;
+    const std::uint32_t seq = image->header.seq;
+    // A gap in the sequence numbers: frames the subscription queue (size 1) replaced while the
+    // tracker was busy, or lost in transport. Sequences that restart (bag loop) are not gaps.
+    if (have_input_seq_ && seq > last_input_seq_ + 1 && seq - last_input_seq_ < 1000000) {
+      window_.dropped += seq - last_input_seq_ - 1;
+      total_.dropped += seq - last_input_seq_ - 1;
+    }
+    have_input_seq_ = true;
+    last_input_seq_ = seq;
+    if (use_camera_info_ && ++unsynced_since_pair_ == 30) {
+      NODELET_WARN("30 images without a camera_info of the same stamp on %s: is the camera publishing "
+                   "it? (set use_camera_info to false to track without bearings)",
+                   getNodeHandle().resolveName("camera_info").c_str());
+    }
+  } catch (...) {
+  }
+}
+
+void ObstacleTrackerNodelet::imageCallback(const sensor_msgs::ImageConstPtr& image) {
+  countInput(image);
+  process(image, sensor_msgs::CameraInfoConstPtr());
+}
+
+void ObstacleTrackerNodelet::imageInfoCallback(const sensor_msgs::ImageConstPtr& image,
+                                               const sensor_msgs::CameraInfoConstPtr& info) {
+  {
+    std::lock_guard<std::mutex> lock(stats_mutex_);
+    unsynced_since_pair_ = 0;
+  }
+  process(image, info);
+}
+
+void ObstacleTrackerNodelet::process(const sensor_msgs::ImageConstPtr& image,
+                                     const sensor_msgs::CameraInfoConstPtr& info) {
+  // In the standalone node (multi-threaded spinner) the synchroniser may call this from the
+  // image and from the camera_info thread: one frame at a time.
+  std::lock_guard<std::mutex> frame_lock(frame_mutex_);
+  const std::string& encoding = image->encoding;
+  std::string error;
+  try {
+    if (have_last_ && image->header.stamp == last_stamp_ && image->header.seq == last_seq_) {
+      std::lock_guard<std::mutex> lock(stats_mutex_);
+      ++duplicates_;
+      NODELET_WARN_THROTTLE(5.0, "frame (stamp %.6f, seq %u) already processed: skipped",
+                            image->header.stamp.toSec(), image->header.seq);
+      return;
+    }
+    const cv::Mat* frame = nullptr;
+    try {
+      frame = &converter_.convert(*image);
+    } catch (const bridge::UnsupportedEncoding& e) {
+      NODELET_ERROR_THROTTLE(5.0, "%s: frame skipped (supported: %s)", e.what(),
+                             joined(bridge::supportedEncodings()).c_str());
+      std::lock_guard<std::mutex> lock(stats_mutex_);
+      ++window_.rejected;
+      ++total_.rejected;
+      last_error_ = e.what();
+      return;
+    } catch (const bridge::MalformedImage& e) {
+      NODELET_ERROR_THROTTLE(5.0, "%s: frame skipped", e.what());
+      std::lock_guard<std::mutex> lock(stats_mutex_);
+      ++window_.rejected;
+      ++total_.rejected;
+      last_error_ = e.what();
+      return;
+    }
+
+    double stamp = image->header.stamp.toSec();
+    if (image->header.stamp.isZero()) {
+      NODELET_WARN_ONCE("images carry no stamp: using the arrival time (latency figures are meaningless)");
+      stamp = ros::Time::now().toSec();
+    } else if (have_last_ && image->header.stamp < last_stamp_) {
+      NODELET_INFO("image time went backwards (%.3f -> %.3f, e.g. a looping bag): tracks restart",
+                   last_stamp_.toSec(), image->header.stamp.toSec());
+    }
+
+    double processing = 0.0;
+    core::TrackState state;
+    {
+      std::lock_guard<std::mutex> lock(pipeline_mutex_);
+      const auto t0 = std::chrono::steady_clock::now();
+      obstacles_ = pipeline_->process(*frame, stamp);
+      processing = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      state = pipeline_->state();
+    }
+    have_last_ = true;
+    last_stamp_ = image->header.stamp;
+    last_seq_ = image->header.seq;
+
+    boost::shared_ptr<ObstacleArray> out = boost::make_shared<ObstacleArray>();
+    out->header = image->header;
+    out->target_frame = target_frame_.empty() ? image->header.frame_id : target_frame_;
+    out->image_width = image->width;
+    out->image_height = image->height;
+    out->processing_time = static_cast<float>(processing);
+    out->obstacles.resize(obstacles_.size());
+    for (std::size_t i = 0; i < obstacles_.size(); ++i) bridge::toMessage(obstacles_[i], out->obstacles[i]);
+    if (info) fillGeometry(*image, *info, *out);
+    obstacles_pub_.publish(out);
+
+    if (debug_pub_.getNumSubscribers() > 0) {
+      char status[160];
+      std::snprintf(status, sizeof(status), "%s  obstacles: %zu  %.1f ms", core::toString(state),
+                    obstacles_.size(), processing * 1e3);
+      bridge::drawOverlay(*frame, obstacles_, status, overlay_);
+      debug_pub_.publish(cv_bridge::CvImage(image->header, "bgr8", overlay_).toImageMsg());
+    }
+
+    const double latency = image->header.stamp.isZero() ? 0.0 : (ros::Time::now() - image->header.stamp).toSec();
+    std::lock_guard<std::mutex> lock(stats_mutex_);
+    for (Window* w : {&window_, &total_}) {
+      ++w->processed;
+      w->processing_sum += processing;
+      w->processing_max = std::max(w->processing_max, processing);
+      w->latency_sum += latency;
+      w->latency_max = std::max(w->latency_max, latency);
+    }
+    last_state_ = state;
+    last_obstacle_count_ = obstacles_.size();
+    return;
+  } catch (const cv::Exception& e) {
+    NODELET_ERROR_THROTTLE(5.0, "OpenCV error on a '%s' frame (skipped, tracks reset): %s", encoding.c_str(), e.what());
+    error = e.what();
+  } catch (const std::exception& e) {
+    NODELET_ERROR_THROTTLE(5.0, "error on a '%s' frame (skipped, tracks reset): %s", encoding.c_str(), e.what());
+    error = e.what();
+  } catch (...) {
+    NODELET_ERROR_THROTTLE(5.0, "unknown error on a '%s' frame (skipped, tracks reset)", encoding.c_str());
+    error = "unknown exception";
+  }
+  // After an unexpected failure the pipeline's state is not trusted: start again.
+  try {
+    std::lock_guard<std::mutex> lock(pipeline_mutex_);
+    pipeline_->reset();
+  } catch (...) {
+  }
+  std::lock_guard<std::mutex> lock(stats_mutex_);
+  ++window_.rejected;
+  ++total_.rejected;
+  last_error_ = error;
+}
+
+void ObstacleTrackerNodelet::fillGeometry(const sensor_msgs::Image& image, const sensor_msgs::CameraInfo& info,
+                                          ObstacleArray& out) {
+  if (!have_info_ || !sameCalibration(info, last_info_)) {
+    std::string error;
+    if (!camera_.setCameraInfo(info, &error)) {
+      NODELET_WARN("camera_info unusable (%s): no bearings until it changes", error.c_str());
+    }
+    last_info_ = info;
+    have_info_ = true;
+  }
+  if (!camera_.valid()) return;
+  std::uint32_t width, height;
+  describedSize(info, &width, &height);
+  if (width != 0 && height != 0 && (width != image.width || height != image.height)) {
+    NODELET_WARN_THROTTLE(10.0, "camera_info describes %ux%u images but the image is %ux%u: no bearings",
+                          width, height, image.width, image.height);
+    return;
+  }
+  Eigen::Quaterniond rotation = Eigen::Quaterniond::Identity();
+  if (!target_frame_.empty() && target_frame_ != image.header.frame_id) {
+    try {
+      const geometry_msgs::TransformStamped tf = tf_buffer_->lookupTransform(
+          target_frame_, image.header.frame_id, image.header.stamp, ros::Duration(tf_timeout_));
+      const auto& q = tf.transform.rotation;
+      rotation = Eigen::Quaterniond(q.w, q.x, q.y, q.z).normalized();
+    } catch (const tf2::TransformException& e) {
+      NODELET_WARN_THROTTLE(5.0, "no transform from '%s' to ~target_frame '%s' at %.3f (%s): bearings left out",
+                            image.header.frame_id.c_str(), target_frame_.c_str(), image.header.stamp.toSec(), e.what());
+      return;
+    }
+  }
+  for (std::size_t i = 0; i < obstacles_.size() && i < out.obstacles.size(); ++i) {
+    const bridge::BoxGeometry g = camera_.box(obstacles_[i].box);
+    // A direction: only the rotation of the transform applies.
+    const Eigen::Vector3d b = rotation * Eigen::Vector3d(g.bearing[0], g.bearing[1], g.bearing[2]);
+    Obstacle& o = out.obstacles[i];
+    o.has_bearing = true;
+    o.bearing.x = b.x();
+    o.bearing.y = b.y();
+    o.bearing.z = b.z();
+    o.angular_width = static_cast<float>(g.angular_width);
+    o.angular_height = static_cast<float>(g.angular_height);
+  }
+}
+
+void ObstacleTrackerNodelet::reconfigure(ObstacleTrackerConfig& config, std::uint32_t /*level*/) {
+  try {
+    std::lock_guard<std::mutex> lock(pipeline_mutex_);
+    std::vector<std::string> messages;
+    const core::Params params = bridge::paramsFromConfig(config, params_, &messages);
+    for (const std::string& m : messages) NODELET_WARN("%s", m.c_str());
+    pipeline_->setParams(params);  // applies from the next frame
+    params_ = pipeline_->params();
+    config = bridge::configFromParams(params_, config);  // report the values actually used
+  } catch (const std::exception& e) {
+    NODELET_ERROR("dynamic_reconfigure change refused: %s", e.what());
+  } catch (...) {
+    NODELET_ERROR("dynamic_reconfigure change refused: unknown error");
+  }
+}
+
+void ObstacleTrackerNodelet::diagnosticsTimer(const ros::WallTimerEvent&) {
+  try {
+    updater_->update();
+  } catch (const std::exception& e) {
+    NODELET_ERROR_THROTTLE(10.0, "diagnostics: %s", e.what());
+  } catch (...) {
+  }
+}
+
+void ObstacleTrackerNodelet::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {
+  core::Params params;
+  {
+    std::lock_guard<std::mutex> lock(pipeline_mutex_);
+    params = pipeline_->params();
+  }
+  std::lock_guard<std::mutex> lock(stats_mutex_);
+  const ros::WallTime now = ros::WallTime::now();
+  const double seconds = std::max(1e-6, (now - window_start_).toSec());
+  const Window& w = window_;
+  const double n = std::max<double>(1.0, static_cast<double>(w.processed));
+  status.add("input rate (Hz)", w.received / seconds);
+  status.add("processed rate (Hz)", w.processed / seconds);
+  status.add("processing time mean (ms)", 1e3 * w.processing_sum / n);
+  status.add("processing time max (ms)", 1e3 * w.processing_max);
+  status.add("latency from image stamp mean (ms)", 1e3 * w.latency_sum / n);
+  status.add("latency from image stamp max (ms)", 1e3 * w.latency_max);
+  status.add("dropped frames (sequence gaps, this period)", w.dropped);
+  status.add("refused frames (this period)", w.rejected);
+  status.add("images received (total)", total_.received);
+  status.add("frames processed (total)", total_.processed);
+  status.add("dropped frames (total)", total_.dropped);
+  status.add("refused frames (total)", total_.rejected);
+  status.add("duplicate frames skipped (total)", duplicates_);
+  status.add("tracker state", core::toString(last_state_));
+  status.add("obstacles", last_obstacle_count_);
+  for (const core::ParamInfo& info : core::paramTable()) {
+    status.add(std::string("param ") + info.name, core::getParam(params, info.name));
+  }
+  if (w.received == 0) {
+    status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "no images received");
+  } else if (w.rejected > 0) {
+    status.summaryf(diagnostic_msgs::DiagnosticStatus::WARN, "%llu frames refused: %s",
+                    static_cast<unsigned long long>(w.rejected), last_error_.c_str());
+  } else if (use_camera_info_ && w.processed == 0) {
+    status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "images but no synchronised camera_info");
+  } else {
+    status.summaryf(diagnostic_msgs::DiagnosticStatus::OK, "%s, %zu obstacles, %.1f Hz",
+                    core::toString(last_state_), last_obstacle_count_, w.processed / seconds);
+  }
+  window_ = Window();
+  window_start_ = now;
+}
+
+}  // namespace obstacle_tracker
+
+PLUGINLIB_EXPORT_CLASS(obstacle_tracker::ObstacleTrackerNodelet, nodelet::Nodelet)
