@@ -1,0 +1,1048 @@
+// Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
+//
+// Scene generator: scenario set-up (base motions and modifiers), camera path, per-frame
+// rendering and ground truth. See scene_generator.h and docs/scenes.md.
+#include "obstacle_tracker/scene/scene_generator.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <sstream>
+#include <stdexcept>
+
+#include <opencv2/imgproc.hpp>
+
+#include "obstacle_tracker/scene/background.h"
+#include "obstacle_tracker/scene/random.h"
+#include "obstacle_tracker/scene/raster.h"
+
+namespace obstacle_tracker {
+namespace scene {
+
+const ObstacleTruth* FrameTruth::find(int id) const {
+  for (const auto& o : obstacles)
+    if (o.id == id) return &o;
+  return nullptr;
+}
+
+std::vector<ScenarioDescription> listScenarios() {
+  return {
+      {"demo", false, "the README demo: a light aircraft approaching (time to contact known) in a sky with clouds above a tree line, mild camera jitter and sensor noise"},
+      {"approach", false, "a fixed-wing aircraft on a collision course: size grows as s0*T/(T-t), time to contact T-t known per frame"},
+      {"crossing", false, "a fixed-wing aircraft crossing the view at constant distance; the camera pans slowly after it"},
+      {"rotation", false, "a multirotor hovering and drifting with planar rotation (image roll) and out-of-plane rotation (yaw, view elevation, tilt)"},
+      {"out_of_view", false, "a multirotor that flies out of the frame on one side, comes back, leaves on the other side and comes back"},
+      {"multi", false, "three obstacles (multirotor id 1, aircraft id 2, bird id 3) whose paths cross near the centre, hiding each other"},
+      {"bird", false, "a flapping bird crossing the view with a wavy flight path"},
+      {"tiny", false, "a multirotor a few pixels wide drifting just above a cluttered horizon (trees, buildings, a lattice mast)"},
+      {"jitter", true, "camera shake: a sum of low- and high-frequency oscillations of a few pixels"},
+      {"jerk", true, "sudden camera jerks (a tenth of the frame in two frames, held, then re-centred) with camera motion blur"},
+      {"blur", true, "long exposure (a whole frame period) and an erratic zig-zag of the main obstacle: strong motion blur"},
+      {"noise", true, "strong sensor noise (and column fixed-pattern noise in the thermal mode)"},
+      {"illumination", true, "illumination change: the scene dims to about half and recovers (auto-exposure / sun behind cloud), with a colour shift"},
+      {"occlusion", true, "a dense cloud drifts across the main obstacle: partial, then full, then partial occlusion"},
+      {"flock", true, "a flock of birds (distractors, ids from 101) crosses close to the main obstacle"},
+      {"overlay", true, "camera on-screen display: date/time, azimuth/elevation, field of view, frame counter and a reticle"},
+      {"glare", true, "the sun next to the main obstacle's path, with strong glare and a lens streak"},
+      {"clutter", true, "a high horizon (trees, buildings, a mast) with the obstacle in front of it"},
+      {"small", true, "the main obstacle about a third of its usual size"},
+      {"large", true, "the main obstacle about two and a half times its usual size"},
+      {"as_fixed_wing", true, "the main obstacle is a fixed-wing aircraft"},
+      {"as_multirotor", true, "the main obstacle is a multirotor"},
+      {"as_bird", true, "the main obstacle is a bird"},
+  };
+}
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+struct TrackPose {
+  Pose pose;  // centre in scene coordinates (frame coordinates of an unmoved camera)
+  double ttc = kInf;
+};
+
+struct Track {
+  int id = 0;
+  bool distractor = false;
+  ShapeModel model;
+  std::function<TrackPose(double)> at;
+  double ttc0 = kInf;
+  double closing_speed = 0.0;
+};
+
+struct Occluder {
+  cv::Mat premul, alpha;
+  cv::Point2d centre_mid;  // scene coordinates at t_mid
+  cv::Point2d velocity;    // px/s
+  double t_mid = 0.0;
+  cv::Point topLeft(double t, cv::Point2d cam) const {
+    const cv::Point2d c = centre_mid + velocity * (t - t_mid) - cam;
+    return {static_cast<int>(std::floor(c.x - 0.5 * alpha.cols + 0.5)), static_cast<int>(std::floor(c.y - 0.5 * alpha.rows + 0.5))};
+  }
+};
+
+struct Rendered {
+  int track = 0;
+  cv::Rect patch;  // frame coordinates, unclipped
+  cv::Mat col_store, a_store;
+  cv::Mat col, a;  // views of the stores, patch-sized
+  ObstacleTruth truth;
+  double total = 0.0;
+};
+
+struct Flags {
+  bool jitter = false, jerk = false, blur = false, noise = false, illumination = false, occlusion = false;
+  bool flock = false, overlay = false, glare = false, clutter = false, small = false, large = false;
+  int cls = -1;
+};
+
+double smooth01(double e0, double e1, double x) {
+  if (e1 <= e0) return x >= e1 ? 1.0 : 0.0;
+  double t = (x - e0) / (e1 - e0);
+  t = t < 0 ? 0 : (t > 1 ? 1 : t);
+  return t * t * (3.0 - 2.0 * t);
+}
+
+double sinTurn(double turns) { return detSin(2.0 * kPi * turns); }
+
+cv::Mat view(cv::Mat& store, cv::Size s, int type) {
+  if (store.empty() || store.rows < s.height || store.cols < s.width || store.type() != type)
+    store.create(std::max(s.height, store.type() == type ? store.rows : 0), std::max(s.width, store.type() == type ? store.cols : 0), type);
+  return store(cv::Rect(0, 0, s.width, s.height));
+}
+
+}  // namespace
+
+struct SceneGenerator::Impl {
+  ScenarioConfig cfg;
+  ScenarioInfo info;
+  int frames = 0, W = 0, H = 0;
+  double fps = 30.0, f_px = 0.0, duration = 0.0;
+  bool mono16 = false;
+  Flags flags;
+
+  BackgroundSpec bg;
+  cv::Mat pano;
+  cv::Point2d base;
+  std::vector<Track> tracks;
+  std::vector<Occluder> occluders;
+  std::vector<std::function<cv::Point2d(double)>> camera_parts;
+  double exposure = 0.35;  // fraction of the frame period
+  float noise_sigma = 1.0f, fpn_sigma = 0.0f;
+  std::vector<std::int16_t> noise, fpn;
+
+  // Per-frame buffers.
+  std::vector<Rendered> objs;
+  std::vector<int> order;  // indices into objs, far to near
+  std::vector<std::vector<ProjectedPlate>> samples;
+  cv::Mat cov_store, scol_store, sa_store;
+  std::vector<std::uint32_t> blur_scratch;
+  cv::Mat mask_tmp;
+
+  cv::Point2d cameraAt(double t) const {
+    cv::Point2d d(0, 0);
+    for (const auto& f : camera_parts) d += f(t);
+    return d;
+  }
+  cv::Point2f blurAt(int i) const {
+    const double t = i / fps;
+    const cv::Point2d d = cameraAt(t) - cameraAt(t - exposure / fps);
+    if (std::fabs(d.x) < 1.5 && std::fabs(d.y) < 1.5) return {0.0f, 0.0f};
+    // The frame shows the scene at the end of the exposure; earlier in the exposure the camera
+    // window was d behind, so the content appeared shifted by up to +d.
+    return {static_cast<float>(d.x), static_cast<float>(d.y)};
+  }
+
+  void setup();
+  void rasterize(int track_index, double t, const cv::Point2d& cam, const std::vector<cv::Point>& blur_off, Rendered& ro);
+  void computeObjects(int i);
+  template <typename T, int CN>
+  void composite(cv::Mat& out);
+};
+
+// ------------------------------------------------------------------------------------------------
+// Scenario set-up.
+
+void SceneGenerator::Impl::setup() {
+  W = cfg.size.width;
+  H = cfg.size.height;
+  mono16 = cfg.mono16;
+  fps = cfg.fps;
+  f_px = 0.5 * W * 1.7320508075688772;  // 60 degree horizontal field of view
+  info.horizontal_fov_deg = 60.0;
+
+  // Parse "base+mod+mod".
+  std::vector<std::string> tok;
+  {
+    std::stringstream ss(cfg.name);
+    std::string t;
+    while (std::getline(ss, t, '+'))
+      if (!t.empty()) tok.push_back(t);
+  }
+  if (tok.empty()) throw std::invalid_argument("scene: empty scenario name");
+  const auto all = listScenarios();
+  auto known = [&](const std::string& n, bool modifier) {
+    for (const auto& d : all)
+      if (d.name == n && d.modifier == modifier) return true;
+    return false;
+  };
+  const std::string baseName = tok[0];
+  if (!known(baseName, false))
+    throw std::invalid_argument("scene: unknown base scenario '" + baseName + "' (generate_scene --list names them)");
+  for (std::size_t k = 1; k < tok.size(); ++k) {
+    const std::string& m = tok[k];
+    if (!known(m, true)) throw std::invalid_argument("scene: unknown modifier '" + m + "' in '" + cfg.name + "'");
+    if (m == "jitter") flags.jitter = true;
+    if (m == "jerk") flags.jerk = true;
+    if (m == "blur") flags.blur = true;
+    if (m == "noise") flags.noise = true;
+    if (m == "illumination") flags.illumination = true;
+    if (m == "occlusion") flags.occlusion = true;
+    if (m == "flock") flags.flock = true;
+    if (m == "overlay") flags.overlay = true;
+    if (m == "glare") flags.glare = true;
+    if (m == "clutter") flags.clutter = true;
+    if (m == "small") flags.small = true;
+    if (m == "large") flags.large = true;
+    if (m == "as_fixed_wing") flags.cls = static_cast<int>(ObstacleClass::kFixedWing);
+    if (m == "as_multirotor") flags.cls = static_cast<int>(ObstacleClass::kMultirotor);
+    if (m == "as_bird") flags.cls = static_cast<int>(ObstacleClass::kBird);
+  }
+  if (baseName == "demo") {
+    flags.jitter = true;
+  }
+  for (const auto& d : all)
+    if (d.name == baseName) info.description = d.description;
+  info.name = cfg.name;
+
+  int default_frames = 180;
+  if (baseName == "demo" || baseName == "out_of_view") default_frames = 240;
+  if (baseName == "multi") default_frames = 210;
+  if (baseName == "bird") default_frames = 150;
+  frames = cfg.frames > 0 ? cfg.frames : default_frames;
+  if (frames < 1) throw std::invalid_argument("scene: frames must be >= 1");
+  duration = frames / fps;
+  const double D = duration;
+  const double Wd = W, Hd = H;
+
+  // Scenery.
+  Rng rb(hashCombine(cfg.seed, 1));
+  bg.frame_height = static_cast<float>(H);
+  bg.cloud_cover = static_cast<float>(rb.uniform(0.18, 0.5));
+  bg.cloud_scale = static_cast<float>(rb.uniform(0.7, 1.3));
+  bg.palette = rb.uniformInt(0, 2);
+  bg.trees = static_cast<float>(rb.uniform(0.35, 0.85));
+  bg.buildings = static_cast<float>(rb.uniform(0.0, 0.4));
+  bg.mast = rb.chance(0.3);
+  bg.glare = static_cast<float>(rb.uniform(0.15, 0.35));
+  double horizon = Hd * rb.uniform(0.78, 0.9);
+  if (flags.clutter || baseName == "tiny") {
+    horizon = Hd * rb.uniform(0.55, 0.62);
+    bg.trees = std::max(bg.trees, 0.7f);
+    bg.buildings = std::max(bg.buildings, 0.35f);
+  }
+  if (baseName == "tiny") bg.mast = true;
+  if (baseName == "demo") {
+    bg.cloud_cover = static_cast<float>(rb.uniform(0.2, 0.35));
+    bg.palette = 0;
+    horizon = Hd * 0.84;
+  }
+  cv::Point2d sun(rb.chance(0.5) ? Wd * rb.uniform(-0.3, 0.05) : Wd * rb.uniform(0.95, 1.3), Hd * rb.uniform(-0.35, 0.05));
+  noise_sigma = mono16 ? 6.0f : 1.0f;
+  fpn_sigma = mono16 ? 4.0f : 0.0f;
+  if (flags.noise) {
+    noise_sigma = mono16 ? 45.0f : 5.5f;
+    fpn_sigma = mono16 ? 25.0f : 2.0f;
+  }
+  if (baseName == "demo") noise_sigma = mono16 ? 20.0f : 2.5f;
+  if (flags.blur) exposure = 1.0;
+
+  // Main obstacle(s).
+  const double size_mult = flags.small ? 0.35 : (flags.large ? 2.5 : 1.0);
+  auto clsOr = [&](ObstacleClass c) { return flags.cls >= 0 ? static_cast<ObstacleClass>(flags.cls) : c; };
+  Rng rt(hashCombine(cfg.seed, 2));
+  const double sky_y = flags.clutter ? horizon - 0.07 * Hd : Hd * 0.4;  // a typical obstacle row
+  auto addTrack = [&](int id, ObstacleClass c, std::function<TrackPose(double)> fn, bool distractor = false) {
+    Track tr;
+    tr.id = id;
+    tr.distractor = distractor;
+    Rng rm(hashCombine(cfg.seed, 3, static_cast<std::uint64_t>(id)));
+    tr.model = makeModel(c, rm);
+    tr.at = std::move(fn);
+    tracks.push_back(std::move(tr));
+  };
+  auto flapAt = [](double t, double freq, double phase) {
+    // Flapping with glides: amplitude modulated by a slow envelope.
+    const double env = 0.55 + 0.45 * sinTurn(0.17 * t + phase);
+    return static_cast<float>(0.2 + 0.65 * env * sinTurn(freq * t + phase));
+  };
+
+  if (baseName == "approach" || baseName == "demo") {
+    const ObstacleClass c = clsOr(ObstacleClass::kFixedWing);
+    const double span0 = (baseName == "demo" ? 0.045 : 0.035) * Wd * size_mult;
+    double ratio = baseName == "demo" ? 6.0 : 12.0;
+    ratio = std::max(1.5, std::min(ratio, 0.9 * Wd / std::max(span0, 1e-6)));
+    const double T = D * ratio / (ratio - 1.0);
+    const cv::Point2d foe(Wd * (0.5 + rt.uniform(-0.12, 0.12)),
+                          flags.clutter ? horizon - 0.05 * Hd : Hd * (0.4 + rt.uniform(-0.06, 0.04)));
+    const double ang = rt.uniform(0.0, 2.0 * kPi);
+    const cv::Point2d off0 = cv::Point2d(detCos(ang) * 0.09 * Wd, detSin(ang) * 0.06 * Hd) * (1.0 / ratio);
+    const float yaw = static_cast<float>(0.5 * kPi + rt.uniform(-0.45, 0.45));
+    const float elev = static_cast<float>(rt.uniform(-0.18, 0.04));
+    const float bank = static_cast<float>(rt.uniform(-0.12, 0.12));
+    const double fph = rt.uniform(0, 1);
+    addTrack(1, c, [=](double t) {
+      TrackPose p;
+      const double k = T / (T - t);
+      p.pose.centre = cv::Point2f(foe + off0 * k);
+      p.pose.scale = static_cast<float>(span0 * k);
+      p.pose.yaw = yaw;
+      p.pose.elevation = elev;
+      p.pose.bank = bank;
+      p.pose.flap = flapAt(t, 3.2, fph);
+      p.ttc = T - t;
+      return p;
+    });
+    tracks.back().ttc0 = T;
+  } else if (baseName == "crossing") {
+    const ObstacleClass c = clsOr(ObstacleClass::kFixedWing);
+    const double span = 0.16 * Wd * size_mult;
+    const bool ltr = rt.chance(0.5);
+    const double x0 = ltr ? 0.12 * Wd : 0.88 * Wd, x1 = ltr ? 0.88 * Wd : 0.12 * Wd;
+    const double v = (x1 - x0) / D;
+    const double y0 = sky_y + rt.uniform(-0.08, 0.05) * Hd;
+    const double ph = rt.uniform(0, 1);
+    const float yaw = static_cast<float>((ltr ? 0.0 : kPi) + rt.uniform(-0.35, 0.35));
+    const float elev = static_cast<float>(rt.uniform(-0.15, 0.05));
+    addTrack(1, c, [=](double t) {
+      TrackPose p;
+      p.pose.centre = cv::Point2f(static_cast<float>(x0 + v * t), static_cast<float>(y0 + 0.04 * Hd * sinTurn(0.7 * t / D + ph)));
+      p.pose.scale = static_cast<float>(span);
+      p.pose.yaw = yaw;
+      p.pose.elevation = elev;
+      p.pose.bank = static_cast<float>(0.06 * sinTurn(0.3 * t + ph));
+      p.pose.flap = flapAt(t, 3.0, ph);
+      return p;
+    });
+    camera_parts.push_back([=](double t) { return cv::Point2d(0.3 * v * t, 0.0); });
+  } else if (baseName == "rotation") {
+    const ObstacleClass c = clsOr(ObstacleClass::kMultirotor);
+    const double span = 0.16 * Wd * size_mult;
+    const double ph = rt.uniform(0, 1), yaw0 = rt.uniform(0, 2 * kPi);
+    addTrack(1, c, [=](double t) {
+      TrackPose p;
+      p.pose.centre = cv::Point2f(static_cast<float>(0.5 * Wd + 0.12 * Wd * sinTurn(t / D + ph)),
+                                  static_cast<float>(sky_y + 0.06 * Hd * sinTurn(2.0 * t / D + ph)));
+      p.pose.scale = static_cast<float>(span);
+      p.pose.yaw = static_cast<float>(yaw0 + 2.0 * kPi * t / 4.0);
+      p.pose.roll = static_cast<float>(0.6 * sinTurn(t / 5.0));
+      p.pose.elevation = static_cast<float>(-0.35 + 0.45 * sinTurn(t / 6.0 + ph));
+      p.pose.bank = static_cast<float>(0.25 * sinTurn(t / 3.0));
+      p.pose.flap = flapAt(t, 3.5, ph);
+      return p;
+    });
+  } else if (baseName == "out_of_view") {
+    const ObstacleClass c = clsOr(ObstacleClass::kMultirotor);
+    const double span = 0.1 * Wd * size_mult;
+    const double ph = rt.uniform(0, 1);
+    const double dir = rt.chance(0.5) ? 1.0 : -1.0;
+    addTrack(1, c, [=](double t) {
+      TrackPose p;
+      const double s = sinTurn(t / D);
+      p.pose.centre = cv::Point2f(static_cast<float>(0.5 * Wd + dir * 0.72 * Wd * s),
+                                  static_cast<float>(sky_y + 0.05 * Hd * sinTurn(1.5 * t / D + ph)));
+      p.pose.scale = static_cast<float>(span);
+      p.pose.yaw = static_cast<float>(0.3 * dir);
+      p.pose.elevation = -0.3f;
+      p.pose.bank = static_cast<float>(0.25 * detCos(2.0 * kPi * t / D) * dir);
+      p.pose.flap = flapAt(t, 3.5, ph);
+      return p;
+    });
+  } else if (baseName == "multi") {
+    // Three paths crossing near the frame centre at mid-sequence, at different distances.
+    const double ph = rt.uniform(0, 1);
+    const double yc = sky_y;
+    addTrack(1, clsOr(ObstacleClass::kMultirotor), [=](double t) {
+      TrackPose p;
+      p.pose.centre = cv::Point2f(static_cast<float>(Wd * (0.1 + 0.8 * t / D)), static_cast<float>(yc + 0.04 * Hd * sinTurn(t / D + ph)));
+      p.pose.scale = static_cast<float>(0.09 * Wd * size_mult);
+      p.pose.yaw = 0.2f;
+      p.pose.elevation = -0.3f;
+      p.pose.bank = 0.15f;
+      p.pose.flap = 0.3f;
+      return p;
+    });
+    addTrack(2, ObstacleClass::kFixedWing, [=](double t) {
+      TrackPose p;
+      p.pose.centre = cv::Point2f(static_cast<float>(Wd * (0.92 - 0.84 * t / D)), static_cast<float>(yc - 0.05 * Hd + 0.05 * Hd * t / D));
+      p.pose.scale = static_cast<float>(0.14 * Wd);
+      p.pose.yaw = static_cast<float>(kPi - 0.25);
+      p.pose.elevation = -0.08f;
+      return p;
+    });
+    addTrack(3, ObstacleClass::kBird, [=](double t) {
+      TrackPose p;
+      p.pose.centre = cv::Point2f(static_cast<float>(Wd * (0.32 + 0.36 * t / D)), static_cast<float>(yc + Hd * (-0.3 + 0.6 * t / D)));
+      p.pose.scale = static_cast<float>(0.06 * Wd);
+      p.pose.yaw = 0.5f;
+      p.pose.elevation = -0.2f;
+      p.pose.flap = static_cast<float>(0.2 + 0.6 * sinTurn(3.8 * t));
+      return p;
+    });
+  } else if (baseName == "bird") {
+    const ObstacleClass c = clsOr(ObstacleClass::kBird);
+    const double span = 0.08 * Wd * size_mult;
+    const bool ltr = rt.chance(0.5);
+    const double x0 = ltr ? 0.1 * Wd : 0.9 * Wd, x1 = ltr ? 0.9 * Wd : 0.1 * Wd;
+    const double ph = rt.uniform(0, 1);
+    const float yaw = static_cast<float>((ltr ? 0.0 : kPi) + rt.uniform(-0.4, 0.4));
+    addTrack(1, c, [=](double t) {
+      TrackPose p;
+      p.pose.centre = cv::Point2f(static_cast<float>(x0 + (x1 - x0) * t / D), static_cast<float>(sky_y + 0.07 * Hd * sinTurn(0.5 * t + ph)));
+      p.pose.scale = static_cast<float>(span);
+      p.pose.yaw = yaw;
+      p.pose.elevation = -0.25f;
+      p.pose.bank = static_cast<float>(0.15 * sinTurn(0.4 * t + ph));
+      p.pose.flap = flapAt(t, 3.6, ph);
+      return p;
+    });
+  } else if (baseName == "tiny") {
+    const ObstacleClass c = clsOr(ObstacleClass::kMultirotor);
+    const double span = std::max(2.5, 0.014 * Wd * size_mult);
+    const double ph = rt.uniform(0, 1);
+    const double yb = horizon - 0.07 * Hd;
+    addTrack(1, c, [=](double t) {
+      TrackPose p;
+      p.pose.centre = cv::Point2f(static_cast<float>(Wd * (0.3 + 0.4 * t / D)), static_cast<float>(yb + 0.035 * Hd * sinTurn(0.8 * t / D + ph)));
+      p.pose.scale = static_cast<float>(span);
+      p.pose.yaw = static_cast<float>(0.3 * sinTurn(0.1 * t));
+      p.pose.elevation = -0.35f;
+      p.pose.bank = 0.1f;
+      p.pose.flap = flapAt(t, 3.5, ph);
+      return p;
+    });
+  }
+
+  // Erratic zig-zag of the main obstacle for the motion-blur modifier.
+  if (flags.blur) {
+    auto f = tracks[0].at;
+    tracks[0].at = [=](double t) {
+      TrackPose p = f(t);
+      p.pose.centre.x += static_cast<float>(0.06 * Wd * sinTurn(1.1 * t));
+      p.pose.centre.y += static_cast<float>(0.035 * Hd * sinTurn(1.7 * t + 0.3));
+      return p;
+    };
+  }
+
+  // Physical quantities from the drawn scale: distance = f * size / scale.
+  for (auto& tr : tracks) {
+    if (std::isfinite(tr.ttc0)) {
+      const double d0 = f_px * tr.model.size_m / tr.at(0.0).pose.scale;
+      tr.closing_speed = d0 / tr.ttc0;
+    }
+  }
+
+  const double t_mid = 0.5 * D;
+  auto mainBoundsAt = [&](double t) {
+    std::vector<ProjectedPlate> pl;
+    projectShape(tracks[0].model, tracks[0].at(t).pose, pl);
+    return projectedBounds(pl);
+  };
+  if (flags.glare) {
+    const cv::Rect2f b = mainBoundsAt(t_mid);
+    sun = cv::Point2d(b.x + b.width * 0.5 + 0.12 * Wd + 0.5 * b.width, b.y - 0.08 * Hd);
+    bg.glare = 0.9f;
+  }
+
+  // Flock of birds (distractors) passing near the main obstacle at mid-sequence.
+  if (flags.flock) {
+    Rng rf(hashCombine(cfg.seed, 4));
+    const cv::Rect2f b = mainBoundsAt(t_mid);
+    const cv::Point2d c_mid(b.x + 0.5 * b.width + rf.uniform(-0.05, 0.05) * Wd, b.y + 0.5 * b.height + rf.uniform(-0.08, 0.08) * Hd);
+    const double vx = (rf.chance(0.5) ? 1.0 : -1.0) * 1.2 * Wd / D;
+    const double vy = rf.uniform(-0.15, 0.15) * Hd / D;
+    const int n = rf.uniformInt(12, 22);
+    for (int k = 0; k < n; ++k) {
+      const double ox = rf.uniform(-0.12, 0.12) * Wd, oy = rf.uniform(-0.06, 0.06) * Hd;
+      const double sc = std::max(2.0, rf.uniform(0.012, 0.024) * Wd);
+      const double ph = rf.uniform(0, 1), fr = rf.uniform(3.0, 4.5), wob = rf.uniform(0.004, 0.012) * Wd;
+      const float yaw = static_cast<float>((vx > 0 ? 0.0 : kPi) + rf.uniform(-0.4, 0.4));
+      addTrack(101 + k, ObstacleClass::kBird, [=](double t) {
+        TrackPose p;
+        const double dt = t - t_mid;
+        p.pose.centre = cv::Point2f(static_cast<float>(c_mid.x + ox + vx * dt + wob * sinTurn(0.5 * t + ph)),
+                                    static_cast<float>(c_mid.y + oy + vy * dt + wob * sinTurn(0.7 * t + 2 * ph)));
+        p.pose.scale = static_cast<float>(sc);
+        p.pose.yaw = yaw;
+        p.pose.elevation = -0.3f;
+        p.pose.flap = static_cast<float>(0.2 + 0.6 * sinTurn(fr * t + ph));
+        return p;
+      }, true);
+    }
+  }
+
+  // A dense cloud drifting across the main obstacle.
+  if (flags.occlusion) {
+    Rng ro(hashCombine(cfg.seed, 5));
+    const cv::Rect2f b = mainBoundsAt(t_mid);
+    const cv::Rect2f b2 = mainBoundsAt(t_mid + 0.05);
+    const cv::Point2d c_t(b.x + 0.5 * b.width, b.y + 0.5 * b.height);
+    const cv::Point2d v_t = (cv::Point2d(b2.x + 0.5 * b2.width, b2.y + 0.5 * b2.height) - c_t) * (1.0 / 0.05);
+    const double min_rel = 0.45 * Wd / D;
+    Occluder oc;
+    oc.t_mid = t_mid;
+    oc.velocity = cv::Point2d(0, 0);
+    double v_rel = std::fabs(v_t.x);
+    if (v_rel < min_rel) {
+      const double s = v_t.x >= 0 ? 1.0 : -1.0;
+      oc.velocity = cv::Point2d(v_t.x - s * min_rel, v_t.y);
+      v_rel = min_rel;
+    }
+    // Fully hidden for about 15 % of the sequence: the opaque core (about half the sprite)
+    // must exceed the obstacle by the distance travelled meanwhile.
+    const double core_w = std::max<double>(b.width, b.height) * 1.2 + v_rel * 0.15 * D;
+    const int sw = static_cast<int>(std::min(2.2 * core_w, 1.5 * Wd)) + 8;
+    const int sh = static_cast<int>(std::min(std::max(0.65 * sw, 2.4 * b.height + 8.0), 1.2 * Hd)) + 8;
+    oc.centre_mid = c_t + cv::Point2d(0, ro.uniform(-0.1, 0.1) * b.height);
+    renderCloudSprite(cv::Size(sw, sh), hashCombine(cfg.seed, 6), mono16, oc.premul, oc.alpha);
+    occluders.push_back(std::move(oc));
+  }
+
+  // Camera motion.
+  if (flags.jitter) {
+    Rng rj(hashCombine(cfg.seed, 7));
+    const double a = (baseName == "demo" ? 0.0025 : 0.006) * Hd;
+    double ph[6];
+    for (double& p : ph) p = rj.uniform(0, 1);
+    camera_parts.push_back([=](double t) {
+      return cv::Point2d(a * (0.6 * sinTurn(0.8 * t + ph[0]) + 0.3 * sinTurn(2.3 * t + ph[1]) + 0.25 * sinTurn(7.1 * t + ph[2])),
+                         a * (0.5 * sinTurn(0.6 * t + ph[3]) + 0.3 * sinTurn(2.9 * t + ph[4]) + 0.2 * sinTurn(8.3 * t + ph[5])));
+    });
+  }
+  if (flags.jerk) {
+    Rng rj(hashCombine(cfg.seed, 8));
+    struct Jerk { double t0, rise, hold, ret; cv::Point2d v; };
+    std::vector<Jerk> jerks;
+    const int n = std::max(2, static_cast<int>(D / 3.0));
+    for (int k = 0; k < n; ++k) {
+      Jerk j;
+      j.t0 = D * (k + rj.uniform(0.15, 0.5)) / n;
+      j.rise = 2.0 / fps;
+      j.hold = rj.uniform(0.5, 1.0);
+      j.ret = rj.uniform(0.3, 0.6);
+      const double ang = rj.uniform(0, 2 * kPi), mag = rj.uniform(0.06, 0.12) * Wd;
+      j.v = cv::Point2d(detCos(ang) * mag, detSin(ang) * mag * 0.7);
+      jerks.push_back(j);
+    }
+    camera_parts.push_back([=](double t) {
+      cv::Point2d d(0, 0);
+      for (const auto& j : jerks)
+        d += j.v * (smooth01(j.t0, j.t0 + j.rise, t) - smooth01(j.t0 + j.rise + j.hold, j.t0 + j.rise + j.hold + j.ret, t));
+      return d;
+    });
+  }
+
+  // Panorama covering every camera window (frame times and exposure starts).
+  double mnx = 0, mny = 0, mxx = 0, mxy = 0;
+  for (int i = 0; i < frames; ++i) {
+    for (double t : {i / fps, (i - exposure) / fps}) {
+      const cv::Point2d d = cameraAt(t);
+      mnx = std::min(mnx, d.x);
+      mny = std::min(mny, d.y);
+      mxx = std::max(mxx, d.x);
+      mxy = std::max(mxy, d.y);
+    }
+  }
+  const int margin = 2;
+  base = cv::Point2d(margin - std::floor(mnx), margin - std::floor(mny));
+  bg.size = cv::Size(W + static_cast<int>(std::ceil(mxx) - std::floor(mnx)) + 2 * margin + 1,
+                     H + static_cast<int>(std::ceil(mxy) - std::floor(mny)) + 2 * margin + 1);
+  bg.horizon_y = static_cast<float>(base.y + horizon);
+  bg.sun = cv::Point2f(static_cast<float>(base.x + sun.x), static_cast<float>(base.y + sun.y));
+  bg.seed = hashCombine(cfg.seed, 9);
+  renderBackground(bg, mono16, pano);
+
+  // Noise tables: temporal noise (two frames long, read at a per-frame offset) and column
+  // fixed-pattern noise; integer Irwin-Hall samples (sum of four 16-bit uniforms).
+  Rng rn(hashCombine(cfg.seed, 10));
+  const std::size_t cn = mono16 ? 1 : 3;
+  const std::size_t npx = static_cast<std::size_t>(W) * static_cast<std::size_t>(H) * cn;
+  if (noise_sigma > 0.0f) {
+    noise.resize(2 * npx);
+    // Sum of four U(0, 65535): mean 131070, sd 65536 * sqrt(4/12) = 37837.
+    const float k = noise_sigma / 37837.0f;
+    for (auto& v : noise) {
+      const std::uint64_t r = rn.next();
+      const std::int64_t s = static_cast<std::int64_t>(r & 0xFFFF) + static_cast<std::int64_t>((r >> 16) & 0xFFFF) +
+                             static_cast<std::int64_t>((r >> 32) & 0xFFFF) + static_cast<std::int64_t>(r >> 48) - 131070;
+      v = static_cast<std::int16_t>(std::floor(static_cast<float>(s) * k + 0.5f));
+    }
+  }
+  if (fpn_sigma > 0.0f) {
+    fpn.resize(static_cast<std::size_t>(W) * cn);
+    for (auto& v : fpn) v = static_cast<std::int16_t>(std::floor(static_cast<float>(rn.normal()) * fpn_sigma + 0.5f));
+  }
+
+  // Static information.
+  info.focal_length_px = f_px;
+  for (const auto& tr : tracks) {
+    ObstacleInfo oi;
+    oi.id = tr.id;
+    oi.cls = tr.model.cls;
+    oi.distractor = tr.distractor;
+    oi.size_m = tr.model.size_m;
+    oi.time_to_contact_at_start = tr.ttc0;
+    oi.closing_speed_mps = tr.closing_speed;
+    info.obstacles.push_back(oi);
+  }
+  objs.resize(tracks.size());
+}
+
+// ------------------------------------------------------------------------------------------------
+// Per-frame obstacle rendering.
+
+void SceneGenerator::Impl::rasterize(int ti, double t, const cv::Point2d& cam, const std::vector<cv::Point>& blur_off,
+                                     Rendered& ro) {
+  const Track& tr = tracks[static_cast<std::size_t>(ti)];
+  const double e = exposure / fps;
+  const TrackPose mid = tr.at(t);
+  const TrackPose pa = tr.at(t - 0.5 * e), pb = tr.at(t + 0.5 * e);
+  const double move = std::sqrt(static_cast<double>((pb.pose.centre - pa.pose.centre).dot(pb.pose.centre - pa.pose.centre))) +
+                      std::fabs(pb.pose.scale - pa.pose.scale) * 0.5;
+  const int n = move < 0.75 ? 1 : std::min(16, static_cast<int>(std::ceil(move / 0.75)) + 1);
+  if (samples.size() < static_cast<std::size_t>(n)) samples.resize(static_cast<std::size_t>(n));
+  float x0 = 1e30f, y0 = 1e30f, x1 = -1e30f, y1 = -1e30f;
+  for (int k = 0; k < n; ++k) {
+    const double tk = n == 1 ? t : t - 0.5 * e + e * k / (n - 1);
+    Pose p = (n == 1 ? mid : tr.at(tk)).pose;
+    p.centre.x -= static_cast<float>(cam.x);
+    p.centre.y -= static_cast<float>(cam.y);
+    projectShape(tr.model, p, samples[static_cast<std::size_t>(k)]);
+    const cv::Rect2f b = projectedBounds(samples[static_cast<std::size_t>(k)]);
+    x0 = std::min(x0, b.x);
+    y0 = std::min(y0, b.y);
+    x1 = std::max(x1, b.x + b.width);
+    y1 = std::max(y1, b.y + b.height);
+  }
+  ro.track = ti;
+  ro.truth = ObstacleTruth();
+  ro.truth.id = tr.id;
+  ro.truth.cls = tr.model.cls;
+  ro.truth.distractor = tr.distractor;
+  ro.truth.scale_px = mid.pose.scale;
+  ro.truth.distance_m = f_px * tr.model.size_m / std::max(1e-6, static_cast<double>(mid.pose.scale));
+  ro.truth.time_to_contact = mid.ttc;
+  // Patch: the unclipped extent (bounded to a generous window around the frame).
+  int px0 = static_cast<int>(std::floor(x0)), py0 = static_cast<int>(std::floor(y0));
+  int px1 = static_cast<int>(std::ceil(x1)), py1 = static_cast<int>(std::ceil(y1));
+  px0 = std::max(px0, -2 * W);
+  py0 = std::max(py0, -2 * H);
+  px1 = std::min(px1, 3 * W);
+  py1 = std::min(py1, 3 * H);
+  if (px1 <= px0 || py1 <= py0 || x1 < x0) {
+    ro.patch = cv::Rect();
+    ro.total = 0.0;
+    return;
+  }
+  ro.patch = cv::Rect(px0, py0, px1 - px0, py1 - py0);
+  const int cn = mono16 ? 1 : 3;
+  ro.col = view(ro.col_store, ro.patch.size(), CV_32FC(cn));
+  ro.a = view(ro.a_store, ro.patch.size(), CV_32FC1);
+  ro.col.setTo(0.0f);
+  ro.a.setTo(0.0f);
+  cv::Mat scol, sa;
+  if (n > 1) {
+    scol = view(scol_store, ro.patch.size(), CV_32FC(cn));
+    sa = view(sa_store, ro.patch.size(), CV_32FC1);
+  }
+  const float inv_n = 1.0f / static_cast<float>(n);
+  float gx0 = 1e30f, gy0 = 1e30f, gx1 = -1e30f, gy1 = -1e30f;
+  for (int k = 0; k < n; ++k) {
+    cv::Mat& C = n > 1 ? scol : ro.col;
+    cv::Mat& A = n > 1 ? sa : ro.a;
+    if (n > 1) {
+      C.setTo(0.0f);
+      A.setTo(0.0f);
+    }
+    for (const ProjectedPlate& pl : samples[static_cast<std::size_t>(k)]) {
+      float bx0 = 1e30f, by0 = 1e30f, bx1 = -1e30f, by1 = -1e30f;
+      for (const auto& q : pl.pts) {
+        bx0 = std::min(bx0, q.x);
+        by0 = std::min(by0, q.y);
+        bx1 = std::max(bx1, q.x);
+        by1 = std::max(by1, q.y);
+      }
+      const cv::Rect pr = cv::Rect(cv::Point(static_cast<int>(std::floor(bx0)), static_cast<int>(std::floor(by0))),
+                                   cv::Point(static_cast<int>(std::ceil(bx1)), static_cast<int>(std::ceil(by1)))) &
+                          ro.patch;
+      if (pr.empty()) continue;
+      const cv::Rect lr(pr.x - ro.patch.x, pr.y - ro.patch.y, pr.width, pr.height);
+      cv::Mat cov = view(cov_store, pr.size(), CV_32FC1);
+      cov.setTo(0.0f);
+      addPolygonCoverage(pl.pts.data(), static_cast<int>(pl.pts.size()), pr.tl(), subrowsForHeight(by1 - by0), cov);
+      float maxcov = 0.0f;
+      for (int r = 0; r < pr.height; ++r) {
+        const float* cv_ = cov.ptr<float>(r);
+        float* ar = A.ptr<float>(lr.y + r) + lr.x;
+        float* cr = C.ptr<float>(lr.y + r) + lr.x * cn;
+        const float py = static_cast<float>(pr.y + r) + 0.5f - pl.centroid.y;
+        for (int c = 0; c < pr.width; ++c) {
+          const float a = std::min(cv_[c], 1.0f) * pl.alpha;
+          if (a <= 0.0f) continue;
+          maxcov = std::max(maxcov, a);
+          const float px = static_cast<float>(pr.x + c) + 0.5f - pl.centroid.x;
+          const float shade = 1.0f + pl.gradient.x * px + pl.gradient.y * py;
+          ar[c] = ar[c] * (1.0f - a) + a;
+          if (cn == 1) {
+            cr[c] = cr[c] * (1.0f - a) + a * pl.thermal * (0.5f + 0.5f * shade);
+          } else {
+            for (int ch = 0; ch < 3; ++ch) cr[c * 3 + ch] = cr[c * 3 + ch] * (1.0f - a) + a * pl.bgr[ch] * shade;
+          }
+        }
+      }
+      if (maxcov >= 1.0f / 255.0f) {
+        gx0 = std::min(gx0, bx0);
+        gy0 = std::min(gy0, by0);
+        gx1 = std::max(gx1, bx1);
+        gy1 = std::max(gy1, by1);
+      }
+    }
+    if (n > 1) {
+      for (int r = 0; r < ro.patch.height; ++r) {
+        const float* sc = scol.ptr<float>(r);
+        const float* sar = sa.ptr<float>(r);
+        float* dc = ro.col.ptr<float>(r);
+        float* dar = ro.a.ptr<float>(r);
+        for (int c = 0; c < ro.patch.width * cn; ++c) dc[c] += sc[c] * inv_n;
+        for (int c = 0; c < ro.patch.width; ++c) dar[c] += sar[c] * inv_n;
+      }
+    }
+  }
+  double total = 0.0;
+  for (int r = 0; r < ro.patch.height; ++r) {
+    const float* ar = ro.a.ptr<float>(r);
+    for (int c = 0; c < ro.patch.width; ++c) total += ar[c];
+  }
+  ro.total = total;
+  if (gx1 < gx0) return;  // nothing visible was drawn
+  // Camera motion blur spreads the drawn shape over the blur offsets.
+  int ox0 = 0, oy0 = 0, ox1 = 0, oy1 = 0;
+  for (const auto& o : blur_off) {
+    ox0 = std::min(ox0, o.x);
+    oy0 = std::min(oy0, o.y);
+    ox1 = std::max(ox1, o.x);
+    oy1 = std::max(oy1, o.y);
+  }
+  gx0 += static_cast<float>(ox0);
+  gy0 += static_cast<float>(oy0);
+  gx1 += static_cast<float>(ox1);
+  gy1 += static_cast<float>(oy1);
+  const float cx0 = std::max(gx0, 0.0f), cy0 = std::max(gy0, 0.0f);
+  const float cx1 = std::min(gx1, static_cast<float>(W)), cy1 = std::min(gy1, static_cast<float>(H));
+  if (cx1 > cx0 && cy1 > cy0) ro.truth.box = cv::Rect2f(cx0, cy0, cx1 - cx0, cy1 - cy0);
+}
+
+void SceneGenerator::Impl::computeObjects(int i) {
+  const double t = i / fps;
+  const cv::Point2d cam = cameraAt(t);
+  const cv::Point2f bv = blurAt(i);
+  const std::vector<cv::Point> off = directionalBlurOffsets(bv.x, bv.y);
+  for (std::size_t k = 0; k < tracks.size(); ++k) rasterize(static_cast<int>(k), t, cam, off, objs[k]);
+  // Far to near.
+  order.resize(objs.size());
+  for (std::size_t k = 0; k < objs.size(); ++k) order[k] = static_cast<int>(k);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    return objs[static_cast<std::size_t>(a)].truth.distance_m > objs[static_cast<std::size_t>(b)].truth.distance_m;
+  });
+  // Visible fraction: the part inside the frame, not hidden by nearer obstacles or clouds.
+  const cv::Rect frame(0, 0, W, H);
+  for (std::size_t oi = 0; oi < order.size(); ++oi) {
+    Rendered& ro = objs[static_cast<std::size_t>(order[oi])];
+    if (ro.total <= 0.0 || ro.truth.box.area() <= 0.0f) {
+      ro.truth.visible_fraction = 0.0f;
+      ro.truth.visible = false;
+      continue;
+    }
+    const cv::Rect in = ro.patch & frame;
+    double vis = 0.0;
+    for (int y = in.y; y < in.y + in.height; ++y) {
+      const float* ar = ro.a.ptr<float>(y - ro.patch.y);
+      for (int x = in.x; x < in.x + in.width; ++x) {
+        const float a = ar[x - ro.patch.x];
+        if (a <= 0.0f) continue;
+        float trans = 1.0f;
+        for (std::size_t oj = oi + 1; oj < order.size(); ++oj) {
+          const Rendered& rj = objs[static_cast<std::size_t>(order[oj])];
+          if (rj.total <= 0.0 || !rj.patch.contains(cv::Point(x, y))) continue;
+          trans *= 1.0f - rj.a.ptr<float>(y - rj.patch.y)[x - rj.patch.x];
+        }
+        for (const auto& oc : occluders) {
+          const cv::Point tl = oc.topLeft(t, cam);
+          const int sx = x - tl.x, sy = y - tl.y;
+          if (sx < 0 || sy < 0 || sx >= oc.alpha.cols || sy >= oc.alpha.rows) continue;
+          trans *= 1.0f - oc.alpha.ptr<float>(sy)[sx];
+        }
+        vis += static_cast<double>(a) * trans;
+      }
+    }
+    ro.truth.visible_fraction = static_cast<float>(std::min(1.0, vis / ro.total));
+    ro.truth.visible = ro.truth.visible_fraction >= kVisibleThreshold;
+  }
+}
+
+template <typename T, int CN>
+void SceneGenerator::Impl::composite(cv::Mat& out) {
+  const cv::Rect frame(0, 0, W, H);
+  const float maxv = static_cast<float>(std::numeric_limits<T>::max());
+  if (cfg.render_obstacles) {
+    for (int idx : order) {
+      const Rendered& ro = objs[static_cast<std::size_t>(idx)];
+      if (ro.total <= 0.0) continue;
+      const cv::Rect in = ro.patch & frame;
+      for (int y = in.y; y < in.y + in.height; ++y) {
+        const float* ar = ro.a.ptr<float>(y - ro.patch.y) + (in.x - ro.patch.x);
+        const float* cr = ro.col.ptr<float>(y - ro.patch.y) + (in.x - ro.patch.x) * CN;
+        T* o = out.ptr<T>(y) + in.x * CN;
+        for (int c = 0; c < in.width; ++c) {
+          const float a = ar[c];
+          if (a <= 0.0f) continue;
+          for (int k = 0; k < CN; ++k) {
+            const float v = static_cast<float>(o[c * CN + k]) * (1.0f - a) + cr[c * CN + k];
+            o[c * CN + k] = static_cast<T>(std::min(std::max(v, 0.0f), maxv) + 0.5f);
+          }
+        }
+      }
+    }
+  }
+}
+
+// ------------------------------------------------------------------------------------------------
+
+SceneGenerator::SceneGenerator(const ScenarioConfig& config) : impl_(new Impl) {
+  if (config.size.width < 16 || config.size.height < 16 || config.size.width > 8192 || config.size.height > 8192)
+    throw std::invalid_argument("scene: frame size must be between 16x16 and 8192x8192");
+  if (!(config.fps > 0.0 && config.fps <= 1000.0)) throw std::invalid_argument("scene: fps must be in (0, 1000]");
+  if (config.frames < 0) throw std::invalid_argument("scene: frames must be >= 0 (0 = default)");
+  impl_->cfg = config;
+  impl_->setup();
+}
+
+SceneGenerator::~SceneGenerator() = default;
+SceneGenerator::SceneGenerator(SceneGenerator&&) noexcept = default;
+SceneGenerator& SceneGenerator::operator=(SceneGenerator&&) noexcept = default;
+
+const ScenarioConfig& SceneGenerator::config() const { return impl_->cfg; }
+const ScenarioInfo& SceneGenerator::info() const { return impl_->info; }
+int SceneGenerator::frameCount() const { return impl_->frames; }
+double SceneGenerator::fps() const { return impl_->fps; }
+cv::Size SceneGenerator::size() const { return cv::Size(impl_->W, impl_->H); }
+int SceneGenerator::type() const { return impl_->mono16 ? CV_16UC1 : CV_8UC3; }
+
+void SceneGenerator::thermalDisplayRange(double& lo, double& hi) const {
+  lo = 5500.0;
+  hi = 13500.0;
+}
+
+namespace {
+
+void checkIndex(int i, int frames) {
+  if (i < 0 || i >= frames)
+    throw std::out_of_range("scene: frame " + std::to_string(i) + " outside [0, " + std::to_string(frames) + ")");
+}
+
+template <typename T, int CN>
+void compositeOccluders(cv::Mat& out, const cv::Mat& premul, const cv::Mat& alpha, cv::Point tl) {
+  const cv::Rect r = cv::Rect(tl, alpha.size()) & cv::Rect(0, 0, out.cols, out.rows);
+  const float maxv = static_cast<float>(std::numeric_limits<T>::max());
+  for (int y = r.y; y < r.y + r.height; ++y) {
+    const float* a = alpha.ptr<float>(y - tl.y) + (r.x - tl.x);
+    const float* c = premul.ptr<float>(y - tl.y) + (r.x - tl.x) * CN;
+    T* o = out.ptr<T>(y) + r.x * CN;
+    for (int x = 0; x < r.width; ++x) {
+      if (a[x] <= 0.0f) continue;
+      for (int k = 0; k < CN; ++k) {
+        const float v = static_cast<float>(o[x * CN + k]) * (1.0f - a[x]) + c[x * CN + k];
+        o[x * CN + k] = static_cast<T>(std::min(std::max(v, 0.0f), maxv) + 0.5f);
+      }
+    }
+  }
+}
+
+}  // namespace
+
+void SceneGenerator::renderFrame(int i, cv::Mat& out, FrameTruth* truth) {
+  Impl& m = *impl_;
+  checkIndex(i, m.frames);
+  const double t = i / m.fps;
+  const cv::Point2d cam = m.cameraAt(t);
+  // 1. Scenery: the camera window over the panorama (sub-pixel, fixed-point bilinear).
+  shiftCrop(m.pano, m.base.x + cam.x, m.base.y + cam.y, cv::Size(m.W, m.H), out);
+  // 2. Obstacles far to near, then occluding clouds.
+  m.computeObjects(i);
+  if (m.mono16)
+    m.composite<std::uint16_t, 1>(out);
+  else
+    m.composite<std::uint8_t, 3>(out);
+  for (const auto& oc : m.occluders) {
+    if (m.mono16)
+      compositeOccluders<std::uint16_t, 1>(out, oc.premul, oc.alpha, oc.topLeft(t, cam));
+    else
+      compositeOccluders<std::uint8_t, 3>(out, oc.premul, oc.alpha, oc.topLeft(t, cam));
+  }
+  // 3. Camera motion blur (jerks).
+  const cv::Point2f bv = m.blurAt(i);
+  if (bv.x != 0.0f || bv.y != 0.0f) directionalBlur(out, bv.x, bv.y, m.blur_scratch);
+  // 4. Illumination change: smooth dimming and recovery, slightly warmer when dim.
+  if (m.flags.illumination) {
+    const double D = m.duration;
+    const double dim = smooth01(0.2 * D, 0.4 * D, t) - smooth01(0.6 * D, 0.75 * D, t);
+    const double bright = smooth01(0.8 * D, 0.87 * D, t) - smooth01(0.9 * D, 0.97 * D, t);
+    const double g = 1.0 - 0.5 * dim + 0.2 * bright;
+    if (m.mono16) {
+      // Thermal: gain / offset drift of the camera's automatic gain control around 5000 counts.
+      const std::int64_t gq = static_cast<std::int64_t>(std::floor(g * 4096.0 + 0.5));
+      for (int y = 0; y < m.H; ++y) {
+        std::uint16_t* p = out.ptr<std::uint16_t>(y);
+        for (int x = 0; x < m.W; ++x) {
+          const std::int64_t v = 5000 + (((static_cast<std::int64_t>(p[x]) - 5000) * gq + 2048) >> 12);
+          p[x] = static_cast<std::uint16_t>(std::min<std::int64_t>(std::max<std::int64_t>(v, 0), 65535));
+        }
+      }
+    } else {
+      cv::Mat lut(1, 256, CV_8UC3);
+      const double gc[3] = {g * (1.0 - 0.08 * dim), g, g * (1.0 + 0.04 * dim)};
+      for (int v = 0; v < 256; ++v)
+        for (int k = 0; k < 3; ++k) {
+          const double x = std::floor(v * gc[k] + 0.5);
+          lut.at<cv::Vec3b>(0, v)[k] = static_cast<std::uint8_t>(std::min(255.0, std::max(0.0, x)));
+        }
+      cv::LUT(out, lut, out);
+    }
+  }
+  // 5. Sensor noise: temporal (table read at a per-frame offset) + column fixed pattern.
+  if (!m.noise.empty() || !m.fpn.empty()) {
+    const int cn = m.mono16 ? 1 : 3;
+    const std::size_t npx = static_cast<std::size_t>(m.W) * static_cast<std::size_t>(m.H) * static_cast<std::size_t>(cn);
+    const std::size_t off = m.noise.empty() ? 0 : static_cast<std::size_t>(hashCombine(m.cfg.seed, 20, static_cast<std::uint64_t>(i)) % npx);
+    const int rowlen = m.W * cn;
+    for (int y = 0; y < m.H; ++y) {
+      const std::int16_t* nz = m.noise.empty() ? nullptr : &m.noise[off + static_cast<std::size_t>(y) * static_cast<std::size_t>(rowlen)];
+      const std::int16_t* fp = m.fpn.empty() ? nullptr : m.fpn.data();
+      if (m.mono16) {
+        std::uint16_t* p = out.ptr<std::uint16_t>(y);
+        for (int x = 0; x < rowlen; ++x) {
+          const int v = static_cast<int>(p[x]) + (nz ? nz[x] : 0) + (fp ? fp[x] : 0);
+          p[x] = static_cast<std::uint16_t>(std::min(std::max(v, 0), 65535));
+        }
+      } else {
+        std::uint8_t* p = out.ptr<std::uint8_t>(y);
+        for (int x = 0; x < rowlen; ++x) {
+          const int v = static_cast<int>(p[x]) + (nz ? nz[x] : 0) + (fp ? fp[x] : 0);
+          p[x] = static_cast<std::uint8_t>(std::min(std::max(v, 0), 255));
+        }
+      }
+    }
+  }
+  // 6. On-screen display (drawn by the camera after the sensor: crisp, no noise).
+  if (m.flags.overlay) {
+    const cv::Scalar col = m.mono16 ? cv::Scalar(15500) : cv::Scalar(245, 245, 245);
+    const int lt = m.mono16 ? cv::LINE_8 : cv::LINE_AA;
+    const double fs = 0.45 * m.H / 480.0;
+    const int th = std::max(1, static_cast<int>(m.H / 480.0 + 0.5));
+    const int tsec = static_cast<int>(std::floor(t));
+    const int ms = static_cast<int>(std::floor((t - tsec) * 1000.0));
+    char buf[128];
+    std::snprintf(buf, sizeof(buf), "2026-06-14  10:%02d:%02d.%03d", (32 + tsec / 60) % 60, (5 + tsec) % 60, ms);
+    cv::putText(out, buf, cv::Point(static_cast<int>(0.02 * m.W), static_cast<int>(0.06 * m.H)), cv::FONT_HERSHEY_SIMPLEX, fs, col, th, lt);
+    std::snprintf(buf, sizeof(buf), "AZ %06.2f  EL %+05.2f", 123.4 + 0.8 * detSin(0.3 * t), 4.2 + 0.3 * detSin(0.2 * t));
+    cv::putText(out, buf, cv::Point(static_cast<int>(0.62 * m.W), static_cast<int>(0.06 * m.H)), cv::FONT_HERSHEY_SIMPLEX, fs, col, th, lt);
+    std::snprintf(buf, sizeof(buf), "FOV 12.0x9.6  IR WH  NUC");
+    cv::putText(out, buf, cv::Point(static_cast<int>(0.02 * m.W), static_cast<int>(0.96 * m.H)), cv::FONT_HERSHEY_SIMPLEX, fs, col, th, lt);
+    std::snprintf(buf, sizeof(buf), "#%06d", i);
+    cv::putText(out, buf, cv::Point(static_cast<int>(0.8 * m.W), static_cast<int>(0.96 * m.H)), cv::FONT_HERSHEY_SIMPLEX, fs, col, th, lt);
+    // Reticle: centre cross with a gap and corner brackets.
+    const int cx = m.W / 2, cy = m.H / 2, g = std::max(2, m.H / 60), l = std::max(4, m.H / 20);
+    cv::line(out, {cx - g - l, cy}, {cx - g, cy}, col, th, lt);
+    cv::line(out, {cx + g, cy}, {cx + g + l, cy}, col, th, lt);
+    cv::line(out, {cx, cy - g - l}, {cx, cy - g}, col, th, lt);
+    cv::line(out, {cx, cy + g}, {cx, cy + g + l}, col, th, lt);
+    const int bw = m.W / 8, bh = m.H / 8, bl = std::max(3, m.H / 30);
+    for (int sx : {-1, 1})
+      for (int sy : {-1, 1}) {
+        const cv::Point c(cx + sx * bw, cy + sy * bh);
+        cv::line(out, c, c - cv::Point(sx * bl, 0), col, th, lt);
+        cv::line(out, c, c - cv::Point(0, sy * bl), col, th, lt);
+      }
+  }
+  if (truth) {
+    truth->frame = i;
+    truth->time = t;
+    truth->obstacles.clear();
+    for (const auto& ro : m.objs) truth->obstacles.push_back(ro.truth);
+  }
+}
+
+FrameTruth SceneGenerator::truth(int i) {
+  Impl& m = *impl_;
+  checkIndex(i, m.frames);
+  m.computeObjects(i);
+  FrameTruth ft;
+  ft.frame = i;
+  ft.time = i / m.fps;
+  for (const auto& ro : m.objs) ft.obstacles.push_back(ro.truth);
+  return ft;
+}
+
+void SceneGenerator::renderObstacleMask(int i, int id, cv::Mat& mask) {
+  Impl& m = *impl_;
+  checkIndex(i, m.frames);
+  m.computeObjects(i);
+  mask.create(m.H, m.W, CV_8UC1);
+  mask.setTo(0);
+  for (const auto& ro : m.objs) {
+    if (ro.truth.id != id || ro.total <= 0.0) continue;
+    const cv::Rect in = ro.patch & cv::Rect(0, 0, m.W, m.H);
+    for (int y = in.y; y < in.y + in.height; ++y) {
+      const float* ar = ro.a.ptr<float>(y - ro.patch.y) + (in.x - ro.patch.x);
+      std::uint8_t* o = mask.ptr<std::uint8_t>(y) + in.x;
+      for (int c = 0; c < in.width; ++c) {
+        const float a = ar[c];
+        if (a < 0.5f / 255.0f) continue;
+        o[c] = static_cast<std::uint8_t>(std::min(255.0f, std::max(1.0f, std::floor(a * 255.0f + 0.5f))));
+      }
+    }
+  }
+  // The frame's camera blur spreads the shape: the support is the union over the offsets.
+  const cv::Point2f bv = m.blurAt(i);
+  const auto off = directionalBlurOffsets(bv.x, bv.y);
+  if (off.size() > 1) {
+    mask.copyTo(m.mask_tmp);
+    for (int y = 0; y < m.H; ++y) {
+      std::uint8_t* o = mask.ptr<std::uint8_t>(y);
+      for (int x = 0; x < m.W; ++x) {
+        std::uint8_t v = 0;
+        for (const auto& d : off) {
+          const int sx = std::min(std::max(x - d.x, 0), m.W - 1), sy = std::min(std::max(y - d.y, 0), m.H - 1);
+          v = std::max(v, m.mask_tmp.ptr<std::uint8_t>(sy)[sx]);
+        }
+        o[x] = v;
+      }
+    }
+  }
+}
+
+SceneGenerator makeScenario(const std::string& name, std::uint64_t seed, int frames, cv::Size size, bool mono16, double fps) {
+  ScenarioConfig c;
+  c.name = name;
+  c.seed = seed;
+  c.frames = frames;
+  c.size = size;
+  c.mono16 = mono16;
+  c.fps = fps;
+  return SceneGenerator(c);
+}
+
+}  // namespace scene
+}  // namespace obstacle_tracker
