@@ -49,7 +49,22 @@ namespace core {
   X(bool, saliency_postprocess, false, false, true, "",                                            \
     "MB+ smoothing by morphological reconstruction and sigmoid contrast stretch")                 \
   X(bool, reject_border_regions, true, false, true, "",                                            \
-    "ignore salient regions that touch the frame border")
+    "ignore salient regions that touch the frame border")                                         \
+  X(int, auto_init_frames, 8, 1, 100, "frames",                                                    \
+    "frames a candidate must be seen before auto-initialisation confirms it (1 = single frame)")  \
+  X(double, auto_init_min_motion, 4.0, 0.0, 1000.0, "px",                                          \
+    "displacement against both the image and the background needed to confirm (0 = cue off)")    \
+  X(bool, auto_init_local_contrast, true, false, true, "",                                         \
+    "auto-init candidates from native-resolution local contrast x MBD (false: MBD alone)")       \
+  X(bool, auto_init_horizon_prior, false, false, true, "",                                         \
+    "halve the auto-init score of candidates below the estimated horizon")                       \
+  X(int, auto_init_candidates, 24, 1, 64, "", "candidates examined per frame by auto-initialisation") \
+  X(bool, auto_init_reject_text, true, false, true, "",                                            \
+    "drop auto-init candidates in rows of similar components (on-screen text)")                   \
+  X(bool, auto_init_reject_static, true, false, true, "",                                          \
+    "drop auto-init candidates whose pixels have not changed for 3 frames (overlays)")            \
+  X(bool, auto_init_shape_filter, true, false, true, "",                                           \
+    "drop auto-init tracks whose box is a thin line (aspect > 4.5: reticles, poles, markings)")
 
 // Kernelized correlation filter and scale.
 #define OT_TRACKER_PARAMS(X)                                                                       \

@@ -70,6 +70,12 @@ class AutoInitializer {
   void reset();
   const std::vector<SalientRegion>& update(const cv::Mat& frame, double stamp);
 
+  // Added (not part of the contract): the last frame's raw candidates (best peak first, score =
+  // peak of the candidate map in [0, 1]) and the accumulated background displacement in pixels
+  // (where the scene content of the first frame has moved to), for tools and tests.
+  const std::vector<SalientRegion>& candidates() const;
+  cv::Point2d backgroundMotion() const;
+
  private:
   struct Impl;
   Impl* impl_;

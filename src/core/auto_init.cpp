@@ -1,0 +1,572 @@
+// Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
+//
+// Multi-frame auto-initialisation (saliency.h, AutoInitializer). One frame's saliency picks the
+// wrong object on real footage (DATA_NOTES.md: on-screen text, sunlit ground, parked aircraft
+// outrank the target), so candidates are followed over the first frames and confirmed by cues
+// that one frame cannot give. Per frame, on the grey image:
+//   1. global motion: phase correlation (Kuglin & Hines 1975; cv::phaseCorrelate) of the frame
+//      against a reference frame (the first one, renewed when the overlap shrinks), both
+//      area-shrunk by 4: where the background has moved to since the start. Limitation: over a
+//      textureless sky the target itself can dominate the (whitened) correlation;
+//   2. candidate map P = local contrast at native resolution (|3x3 mean - 21x21 mean|: keeps
+//      targets of a few pixels that a 300 px saliency map loses) x MBD saliency at half
+//      resolution (suppresses ground, trees and buildings connected to the frame border);
+//      auto_init_local_contrast = false uses the MBD map alone;
+//   3. candidates: peaks of P that are maxima of their 16x16 cell and its 8 neighbours, the best
+//      auto_init_candidates of them; box = the 8-connected pixels >= 0.3 x the peak around it;
+//      regions touching the frame border are dropped when reject_border_regions is set;
+//   4. candidates are associated with the tracks of earlier frames (nearest predicted position
+//      within a gate); a track is confirmed once seen auto_init_frames times (persistence, at
+//      least 60 % of the frames since it appeared) and, when auto_init_min_motion > 0, once it
+//      has moved that far against both the image (an overlay or a target the camera keeps still
+//      stays put in the image) and the background (a static scene object moves exactly with the
+//      background);
+//   5. score of a confirmed track: mean peak of P x seen share; x 0.5 below the horizon when
+//      auto_init_horizon_prior is set (horizon: the strongest row-mean step of the shrunk frame).
+// Each cue can be switched off by its parameter; init_table measures what each one brings.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <stdexcept>
+
+#include <opencv2/imgproc.hpp>
+
+#include "obstacle_tracker/core/saliency.h"
+#include "obstacle_tracker/core/segmentation.h"
+
+namespace obstacle_tracker {
+namespace core {
+
+namespace {
+
+constexpr int kCell = 16;           // candidate cell side (px)
+constexpr int kGrowRadius = 64;     // largest half-side of a candidate box (px)
+constexpr int kMaxMissed = 3;       // frames a track may go unseen before it is dropped
+constexpr size_t kMaxTracks = 96;
+constexpr int kPoolFactor = 4;      // peaks grown per frame, x auto_init_candidates
+constexpr int kStillFrames = 3;     // frames a pixel must be unchanged to count as still
+constexpr int kStillLevel = 3;      // grey levels of change still counted as unchanged
+constexpr float kStillShare = 0.85f;
+constexpr float kGrowShare = 0.3f;
+constexpr float kMaxAspect = 4.5f;      // candidate boxes more elongated are lines
+constexpr double kMinLinearity = 0.5;   // share of position variance a steady motion explains  // a candidate's region: pixels >= this share of its peak
+
+struct Candidate {
+  cv::Rect box;
+  cv::Point2f centre;
+  int area = 0;
+  float peak = 0.0f, mean = 0.0f;
+  bool touches_border = false;
+  bool used = false;
+};
+
+constexpr int kHistory = 32;  // positions kept per track for the motion fit
+
+struct Track {
+  // Ring buffer of (frame, image position, image position minus background displacement).
+  std::array<int, kHistory> frames;
+  std::array<cv::Point2f, kHistory> img, rel;
+  int count = 0;
+  void remember(int frame, cv::Point2f p, cv::Point2d background) {
+    const int k = count % kHistory;
+    frames[k] = frame;
+    img[k] = p;
+    rel[k] = p - cv::Point2f(static_cast<float>(background.x), static_cast<float>(background.y));
+    ++count;
+  }
+  cv::Point2f first_centre, centre, velocity;
+  cv::Point2d first_background;
+  cv::Rect box;
+  int first_frame = 0, last_frame = 0, hits = 0, area = 0;
+  double sum_peak = 0.0, last_mean = 0.0;
+  bool touches_border = false;
+};
+
+}  // namespace
+
+struct AutoInitializer::Impl {
+  Params params;
+  MbdSaliency mbd;
+  MatArena grey_arena, small_arena, half_arena, sal_arena, blur_arena, box_arena, contrast_arena,
+      prob_arena;
+  cv::Mat prev_small, cur_small, ref_small, hann;
+  cv::Point2d background{0.0, 0.0}, last_shift{0.0, 0.0}, ref_background{0.0, 0.0};
+  cv::Size size;
+  int frame_index = 0;
+  int horizon = -1;
+  std::vector<int> stamp, queue;
+  int stamp_value = 0;
+  std::vector<float> cell_max;
+  std::vector<uchar> text_flag;
+  cv::Mat prev_grey, still, diff;  // persistent: previous grey frame, per-pixel still count
+  std::vector<cv::Point> cell_arg;
+  std::vector<Candidate> candidates;
+  std::vector<Track> tracks;
+  std::vector<SalientRegion> confirmed, raw;
+
+  Impl() {
+    candidates.reserve(64);
+    tracks.reserve(kMaxTracks + 64);
+    confirmed.reserve(64);
+    raw.reserve(64);
+  }
+
+  void reset() {
+    prev_small.release();
+    ref_small.release();
+    prev_grey.release();
+    background = last_shift = ref_background = cv::Point2d(0.0, 0.0);
+    frame_index = 0;
+    horizon = -1;
+    tracks.clear();
+    confirmed.clear();
+    raw.clear();
+  }
+
+  void globalMotion(const cv::Mat& grey) {
+    last_shift = cv::Point2d(0.0, 0.0);
+    if (grey.cols < 64 || grey.rows < 64) return;
+    const int f = 4;
+    cv::Mat small = small_arena.get(grey.rows / f, grey.cols / f, CV_8U);
+    cv::resize(grey(cv::Rect(0, 0, small.cols * f, small.rows * f)), small, small.size(), 0, 0, cv::INTER_AREA);
+    small.convertTo(cur_small, CV_32F);
+    if (hann.size() != cur_small.size()) cv::createHanningWindow(hann, cur_small.size(), CV_32F);
+    // Displacement against a reference frame, not summed frame to frame: the sub-pixel error
+    // of each estimate (~0.1 px at 1/4 scale) would otherwise add up. The reference moves on
+    // when the overlap gets small or the correlation weak.
+    auto plausible = [&](const cv::Point2d& s, double response) {
+      return response > 0.05 && std::abs(s.x) < small.cols / 3.0 && std::abs(s.y) < small.rows / 3.0;
+    };
+    const cv::Point2d before = background;
+    bool reanchor = ref_small.empty() || ref_small.size() != cur_small.size();
+    if (!reanchor) {
+      double response = 0.0;
+      const cv::Point2d s = cv::phaseCorrelate(ref_small, cur_small, hann, &response);
+      if (plausible(s, response)) {
+        background = ref_background + s * static_cast<double>(f);
+        reanchor = std::abs(s.x) > small.cols / 8.0 || std::abs(s.y) > small.rows / 8.0;
+      } else {
+        // Fall back to the previous frame (a scene change or a jerk), then re-anchor.
+        double r2 = 0.0;
+        const cv::Point2d s2 = cv::phaseCorrelate(prev_small, cur_small, hann, &r2);
+        if (plausible(s2, r2)) background += s2 * static_cast<double>(f);
+        reanchor = true;
+      }
+    }
+    last_shift = background - before;
+    if (reanchor) {
+      cur_small.copyTo(ref_small);
+      ref_background = background;
+    }
+    std::swap(prev_small, cur_small);
+    if (params.auto_init_horizon_prior) {
+      // Row means of the shrunk frame; the horizon is the strongest step (over 4 rows) in the
+      // middle 80 %, if it is at least 12 grey levels.
+      horizon = -1;
+      float best = 12.0f;
+      const int rows = small.rows;
+      for (int r = std::max(2, rows / 10); r < rows - std::max(2, rows / 10); ++r) {
+        const float a = static_cast<float>(cv::mean(small.rowRange(r - 2, r))[0]);
+        const float b = static_cast<float>(cv::mean(small.rowRange(r, r + 2))[0]);
+        if (std::abs(a - b) > best) {
+          best = std::abs(a - b);
+          horizon = r * f;
+        }
+      }
+    }
+  }
+
+  // Per-pixel count of consecutive frames without change (saturating at 255).
+  void updateStill(const cv::Mat& grey) {
+    if (!params.auto_init_reject_static) return;
+    if (prev_grey.size() != grey.size()) {
+      grey.copyTo(prev_grey);
+      still.create(grey.size(), CV_8U);
+      still.setTo(0);
+      return;
+    }
+    cv::absdiff(grey, prev_grey, diff);
+    for (int r = 0; r < grey.rows; ++r) {
+      const uchar* d = diff.ptr<uchar>(r);
+      uchar* sc = still.ptr<uchar>(r);
+      for (int x = 0; x < grey.cols; ++x)
+        sc[x] = d[x] <= kStillLevel ? static_cast<uchar>(std::min(255, sc[x] + 1)) : 0;
+    }
+    grey.copyTo(prev_grey);
+  }
+
+  // Candidate map P (CV_8U, native resolution).
+  cv::Mat candidateMap(const cv::Mat& grey) {
+    const int rows = grey.rows, cols = grey.cols;
+    const bool halve = rows >= 64 && cols >= 64;
+    cv::Mat half = grey;
+    if (halve) {
+      half = half_arena.get(rows / 2, cols / 2, CV_8U);
+      cv::resize(grey(cv::Rect(0, 0, half.cols * 2, half.rows * 2)), half, half.size(), 0, 0, cv::INTER_AREA);
+    }
+    cv::Mat sal = sal_arena.get(half.rows, half.cols, CV_8U);
+    Params mp = params;
+    mp.saliency_backgroundness = false;
+    mp.saliency_postprocess = false;
+    mp.saliency_median = 0;
+    mbd.compute(half, mp, sal);
+    cv::Mat p = prob_arena.get(rows, cols, CV_8U);
+    const int sh = halve ? 1 : 0;
+    if (params.auto_init_local_contrast) {
+      cv::Mat small_mean = blur_arena.get(rows, cols, CV_8U);
+      cv::Mat large_mean = box_arena.get(rows, cols, CV_8U);
+      cv::Mat contrast = contrast_arena.get(rows, cols, CV_8U);
+      cv::blur(grey, small_mean, cv::Size(3, 3));
+      cv::blur(grey, large_mean, cv::Size(21, 21));
+      cv::absdiff(small_mean, large_mean, contrast);
+      for (int r = 0; r < rows; ++r) {
+        const uchar* c = contrast.ptr<uchar>(r);
+        const uchar* s = sal.ptr<uchar>(std::min(r >> sh, sal.rows - 1));
+        uchar* o = p.ptr<uchar>(r);
+        const int last = sal.cols - 1;
+        for (int x = 0; x < cols; ++x) {
+          // Contrast is stretched x2 (saturating) first: small targets rarely reach 64 levels of
+          // local contrast, and the product must not vanish in 8 bits.
+          const int cc = std::min(255, 2 * c[x]);
+          o[x] = static_cast<uchar>((cc * s[std::min(x >> sh, last)] + 127) / 255);
+        }
+      }
+    } else {
+      for (int r = 0; r < rows; ++r) {
+        const uchar* s = sal.ptr<uchar>(std::min(r >> sh, sal.rows - 1));
+        uchar* o = p.ptr<uchar>(r);
+        const int last = sal.cols - 1;
+        for (int x = 0; x < cols; ++x) o[x] = s[std::min(x >> sh, last)];
+      }
+    }
+    return p;
+  }
+
+  void findCandidates(const cv::Mat& p) {
+    candidates.clear();
+    const int rows = p.rows, cols = p.cols;
+    const int gw = (cols + kCell - 1) / kCell, gh = (rows + kCell - 1) / kCell;
+    cell_max.assign(static_cast<size_t>(gw) * gh, -1.0f);
+    cell_arg.assign(static_cast<size_t>(gw) * gh, cv::Point(0, 0));
+    int global_max = 0;
+    for (int r = 0; r < rows; ++r) {
+      const uchar* o = p.ptr<uchar>(r);
+      const int gr = r / kCell;
+      for (int x = 0; x < cols; ++x) {
+        const size_t k = static_cast<size_t>(gr) * gw + x / kCell;
+        if (o[x] > cell_max[k]) {
+          cell_max[k] = o[x];
+          cell_arg[k] = cv::Point(x, r);
+        }
+      }
+    }
+    for (float v : cell_max) global_max = std::max(global_max, static_cast<int>(v));
+    const float floor_value = std::max(8.0f, 0.1f * global_max);
+    for (int gy = 0; gy < gh; ++gy)
+      for (int gx = 0; gx < gw; ++gx) {
+        const float v = cell_max[static_cast<size_t>(gy) * gw + gx];
+        if (v < floor_value) continue;
+        bool is_max = true;
+        for (int dy = -1; dy <= 1 && is_max; ++dy)
+          for (int dx = -1; dx <= 1; ++dx) {
+            const int nx = gx + dx, ny = gy + dy;
+            if ((dx || dy) && nx >= 0 && ny >= 0 && nx < gw && ny < gh &&
+                cell_max[static_cast<size_t>(ny) * gw + nx] > v) {
+              is_max = false;
+              break;
+            }
+          }
+        if (!is_max) continue;
+        Candidate c;
+        c.peak = v;
+        c.centre = cell_arg[static_cast<size_t>(gy) * gw + gx];
+        candidates.push_back(c);
+      }
+    std::sort(candidates.begin(), candidates.end(),
+              [](const Candidate& a, const Candidate& b) { return a.peak > b.peak; });
+    const size_t pool = static_cast<size_t>(kPoolFactor * params.auto_init_candidates);
+    if (candidates.size() > pool) candidates.resize(pool);
+
+    // Grow each peak into its region (>= half the peak), drop duplicates and filtered regions.
+    if (stamp.size() != static_cast<size_t>(rows) * cols) {
+      stamp.assign(static_cast<size_t>(rows) * cols, 0);
+      stamp_value = 0;
+    }
+    const double max_area = params.max_object_area_fraction * rows * cols;
+    size_t kept = 0;
+    for (size_t i = 0; i < candidates.size(); ++i) {
+      Candidate c = candidates[i];
+      const cv::Point seed(static_cast<int>(c.centre.x), static_cast<int>(c.centre.y));
+      if (stamp[static_cast<size_t>(seed.y) * cols + seed.x] == stamp_value && stamp_value > 0 && i > 0) {
+        // Already inside the region of a stronger peak of this frame.
+        bool inside = false;
+        for (size_t j = 0; j < kept; ++j) inside |= candidates[j].box.contains(seed);
+        if (inside) continue;
+      }
+      ++stamp_value;
+      if (stamp_value == INT32_MAX) {
+        std::fill(stamp.begin(), stamp.end(), 0);
+        stamp_value = 1;
+      }
+      const int thr = std::max(1, static_cast<int>(std::ceil(kGrowShare * c.peak)));
+      const int x_lo = std::max(0, seed.x - kGrowRadius), x_hi = std::min(cols - 1, seed.x + kGrowRadius);
+      const int y_lo = std::max(0, seed.y - kGrowRadius), y_hi = std::min(rows - 1, seed.y + kGrowRadius);
+      queue.clear();
+      queue.push_back(seed.y * cols + seed.x);
+      stamp[static_cast<size_t>(seed.y) * cols + seed.x] = stamp_value;
+      int x0 = seed.x, x1 = seed.x, y0 = seed.y, y1 = seed.y;
+      double sum = 0.0;
+      for (size_t q = 0; q < queue.size(); ++q) {
+        const int y = queue[q] / cols, x = queue[q] % cols;
+        sum += p.at<uchar>(y, x);
+        x0 = std::min(x0, x);
+        x1 = std::max(x1, x);
+        y0 = std::min(y0, y);
+        y1 = std::max(y1, y);
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx) {
+            const int nx = x + dx, ny = y + dy;
+            if (nx < x_lo || nx > x_hi || ny < y_lo || ny > y_hi) continue;
+            const size_t k = static_cast<size_t>(ny) * cols + nx;
+            if (stamp[k] == stamp_value || p.at<uchar>(ny, nx) < thr) continue;
+            stamp[k] = stamp_value;
+            queue.push_back(ny * cols + nx);
+          }
+      }
+      c.area = static_cast<int>(queue.size());
+      c.mean = static_cast<float>(sum / c.area);
+      c.box = cv::Rect(cv::Point(x0, y0), cv::Point(x1 + 1, y1 + 1));
+      c.centre = cv::Point2f(0.5f * (x0 + x1 + 1), 0.5f * (y0 + y1 + 1));
+      c.touches_border = x0 == 0 || y0 == 0 || x1 == cols - 1 || y1 == rows - 1;
+      if (c.touches_border && params.reject_border_regions) continue;
+      // Box area: the grown core of a target of a few pixels is smaller than the target.
+      if (c.box.area() < params.min_object_area || c.area > max_area) continue;
+      if (params.auto_init_reject_static && frame_index > 0) {
+        // Share of the box's pixels unchanged for kStillFrames frames: an overlay (or a static
+        // scene under a still camera). A moving target changes most of its box every frame.
+        int still_px = 0;
+        for (int y = c.box.y; y < c.box.y + c.box.height; ++y) {
+          const uchar* sc = still.ptr<uchar>(y);
+          for (int x = c.box.x; x < c.box.x + c.box.width; ++x) still_px += sc[x] >= kStillFrames;
+        }
+        if (still_px >= kStillShare * c.box.area()) continue;
+      }
+      candidates[kept++] = c;
+    }
+    candidates.resize(kept);
+    if (params.auto_init_reject_text) rejectTextRows();
+    // Best peaks first (ties: larger mean), at most auto_init_candidates.
+    std::stable_sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
+      return a.peak != b.peak ? a.peak > b.peak : a.mean > b.mean;
+    });
+    if (static_cast<int>(candidates.size()) > params.auto_init_candidates)
+      candidates.resize(static_cast<size_t>(params.auto_init_candidates));
+  }
+
+  // Text of an on-screen display: rows of >= 3 components of similar height, side by side.
+  // A candidate with two or more such neighbours (centre rows within 40 % of its height, heights
+  // within a factor 1.6, horizontal gap under 4 heights) is dropped.
+  void rejectTextRows() {
+    text_flag.assign(candidates.size(), 0);
+    for (size_t i = 0; i < candidates.size(); ++i) {
+      const Candidate& a = candidates[i];
+      const float h = static_cast<float>(std::max(3, a.box.height));
+      int neighbours = 0;
+      for (size_t j = 0; j < candidates.size(); ++j) {
+        if (i == j) continue;
+        const Candidate& b = candidates[j];
+        const float hb = static_cast<float>(std::max(3, b.box.height));
+        if (std::abs(a.centre.y - b.centre.y) > 0.4f * h) continue;
+        if (hb > 1.6f * h || h > 1.6f * hb) continue;
+        if (std::abs(a.centre.x - b.centre.x) > 4.0f * h + 0.5f * (a.box.width + b.box.width)) continue;
+        ++neighbours;
+      }
+      text_flag[i] = neighbours >= 2;
+    }
+    size_t kept = 0;
+    for (size_t i = 0; i < candidates.size(); ++i)
+      if (!text_flag[i]) candidates[kept++] = candidates[i];
+    candidates.resize(kept);
+  }
+
+  void associate() {
+    for (Candidate& c : candidates) {
+      int best = -1;
+      float best_d2 = 0.0f;
+      for (size_t t = 0; t < tracks.size(); ++t) {
+        Track& tr = tracks[t];
+        if (tr.last_frame == frame_index) continue;  // already matched in this frame
+        const float gap = static_cast<float>(frame_index - tr.last_frame);
+        const cv::Point2f pred = tr.centre + tr.velocity * gap;  // image velocity (camera included)
+        const float gate = std::max(8.0f, 0.75f * std::max(tr.box.width, tr.box.height)) + 2.0f * gap;
+        const cv::Point2f d = c.centre - pred;
+        const float d2 = d.dot(d);
+        if (d2 <= gate * gate && (best < 0 || d2 < best_d2)) {
+          best = static_cast<int>(t);
+          best_d2 = d2;
+        }
+      }
+      if (best >= 0) {
+        Track& tr = tracks[static_cast<size_t>(best)];
+        const float gap = static_cast<float>(frame_index - tr.last_frame);
+        const cv::Point2f v = (c.centre - tr.centre) * (1.0f / gap);
+        tr.velocity = tr.hits == 1 ? v : 0.5f * tr.velocity + 0.5f * v;
+        tr.centre = c.centre;
+        tr.box = c.box;
+        tr.area = c.area;
+        tr.last_frame = frame_index;
+        ++tr.hits;
+        tr.sum_peak += c.peak;
+        tr.last_mean = c.mean;
+        tr.touches_border = c.touches_border;
+        tr.remember(frame_index, c.centre, background);
+      } else if (tracks.size() < kMaxTracks) {
+        Track tr;
+        tr.first_centre = tr.centre = c.centre;
+        tr.velocity = cv::Point2f(0.0f, 0.0f);
+        tr.first_background = background;
+        tr.box = c.box;
+        tr.area = c.area;
+        tr.first_frame = tr.last_frame = frame_index;
+        tr.hits = 1;
+        tr.sum_peak = c.peak;
+        tr.last_mean = c.mean;
+        tr.touches_border = c.touches_border;
+        tr.remember(frame_index, c.centre, background);
+        tracks.push_back(tr);
+      }
+    }
+    tracks.erase(std::remove_if(tracks.begin(), tracks.end(),
+                                [&](const Track& t) { return frame_index - t.last_frame > kMaxMissed; }),
+                 tracks.end());
+  }
+
+  // Thin lines (reticles, poles, road markings): aspect above kMaxAspect.
+  static bool isLine(const cv::Rect& b) {
+    const float w = static_cast<float>(std::max(1, b.width)), h = static_cast<float>(std::max(1, b.height));
+    return std::max(w / h, h / w) > kMaxAspect;
+  }
+
+  // Displacement of a track over its remembered history, from least-squares lines through its
+  // positions against time (so that a region whose box jitters around a fixed point, e.g. a
+  // textured structure, does not count as moving): the smaller of the displacement in the image
+  // and the displacement against the background.
+  // `linearity` receives the share of the positions' variance the line explains (for the
+  // smaller displacement): near 1 for a target moving steadily, low for a jittering box.
+  static double motionOf(const Track& t, double* linearity = nullptr) {
+    const int n = std::min(t.count, kHistory);
+    if (linearity) *linearity = 0.0;
+    if (n < 2) return 0.0;
+    double mt = 0.0;
+    cv::Point2d mi(0, 0), mr(0, 0);
+    int t_lo = INT32_MAX, t_hi = INT32_MIN;
+    for (int k = 0; k < n; ++k) {
+      mt += t.frames[k];
+      mi += cv::Point2d(t.img[k]);
+      mr += cv::Point2d(t.rel[k]);
+      t_lo = std::min(t_lo, t.frames[k]);
+      t_hi = std::max(t_hi, t.frames[k]);
+    }
+    mt /= n;
+    mi *= 1.0 / n;
+    mr *= 1.0 / n;
+    double stt = 0.0, vi = 0.0, vr = 0.0;
+    cv::Point2d si(0, 0), sr(0, 0);
+    for (int k = 0; k < n; ++k) {
+      const double dt = t.frames[k] - mt;
+      const cv::Point2d di = cv::Point2d(t.img[k]) - mi, dr = cv::Point2d(t.rel[k]) - mr;
+      stt += dt * dt;
+      si += dt * di;
+      sr += dt * dr;
+      vi += di.dot(di);
+      vr += dr.dot(dr);
+    }
+    if (stt <= 0.0) return 0.0;
+    const double span = t_hi - t_lo;
+    const double ni = std::hypot(si.x, si.y), nr = std::hypot(sr.x, sr.y);
+    const bool img_smaller = ni < nr;
+    if (linearity) {
+      const double explained = (img_smaller ? ni * ni : nr * nr) / stt;
+      const double total = img_smaller ? vi : vr;
+      *linearity = total > 0.0 ? explained / total : 0.0;
+    }
+    return span * std::min(ni, nr) / stt;
+  }
+
+  static SalientRegion toRegion(const cv::Rect& box, int area, double mean, double score, bool border) {
+    SalientRegion r;
+    r.box = cv::Rect2f(box);
+    r.area = static_cast<float>(area);
+    r.mean_saliency = static_cast<float>(mean / 255.0);
+    r.score = static_cast<float>(score);
+    r.touches_border = border;
+    return r;
+  }
+
+  void confirm() {
+    confirmed.clear();
+    raw.clear();
+    for (const Candidate& c : candidates) raw.push_back(toRegion(c.box, c.area, c.mean, c.peak / 255.0, c.touches_border));
+    const int need = params.auto_init_frames;
+    for (const Track& t : tracks) {
+      if (t.last_frame != frame_index || t.hits < need) continue;
+      const int age = frame_index - t.first_frame + 1;
+      const double seen = static_cast<double>(t.hits) / age;
+      if (need > 1 && seen < 0.6) continue;
+      if (params.auto_init_shape_filter && isLine(t.box)) continue;
+      double score = t.sum_peak / (255.0 * t.hits) * seen;
+      if (params.auto_init_min_motion > 0.0) {
+        double linearity = 0.0;
+        const double motion = motionOf(t, &linearity);
+        if (motion < params.auto_init_min_motion || linearity < kMinLinearity) continue;
+        // Steady motion raises the score up to 3x the threshold.
+        score *= std::min(1.0, motion / (3.0 * params.auto_init_min_motion));
+      }
+      if (params.auto_init_horizon_prior && horizon >= 0 && t.centre.y > horizon) score *= 0.5;
+      confirmed.push_back(toRegion(t.box, t.area, t.last_mean, score, t.touches_border));
+    }
+    std::sort(confirmed.begin(), confirmed.end(),
+              [](const SalientRegion& a, const SalientRegion& b) { return a.score > b.score; });
+  }
+};
+
+AutoInitializer::AutoInitializer(const Params& params) : impl_(new Impl) { setParams(params); }
+AutoInitializer::~AutoInitializer() { delete impl_; }
+
+void AutoInitializer::setParams(const Params& params) {
+  impl_->params = params;
+  validate(impl_->params);
+}
+
+void AutoInitializer::reset() { impl_->reset(); }
+
+const std::vector<SalientRegion>& AutoInitializer::update(const cv::Mat& frame, double stamp) {
+  (void)stamp;
+  if (frame.empty()) throw std::invalid_argument("AutoInitializer::update: empty frame");
+  if (frame.type() != CV_8UC1 && frame.type() != CV_8UC3)
+    throw std::invalid_argument("AutoInitializer::update: frame must be CV_8UC1 or CV_8UC3");
+  Impl& m = *impl_;
+  if (frame.size() != m.size) {
+    m.reset();
+    m.size = frame.size();
+  }
+  cv::Mat grey = frame;
+  if (frame.channels() == 3) {
+    grey = m.grey_arena.get(frame.rows, frame.cols, CV_8U);
+    cv::cvtColor(frame, grey, cv::COLOR_BGR2GRAY);
+  }
+  m.globalMotion(grey);
+  m.updateStill(grey);
+  const cv::Mat p = m.candidateMap(grey);
+  m.findCandidates(p);
+  m.associate();
+  m.confirm();
+  ++m.frame_index;
+  return m.confirmed;
+}
+
+const std::vector<SalientRegion>& AutoInitializer::candidates() const { return impl_->raw; }
+cv::Point2d AutoInitializer::backgroundMotion() const { return impl_->background; }
+
+}  // namespace core
+}  // namespace obstacle_tracker
