@@ -87,7 +87,7 @@ struct Track {
 struct AutoInitializer::Impl {
   Params params;
   MbdSaliency mbd;
-  MatArena grey_arena, small_arena, half_arena, sal_arena, blur_arena, box_arena, contrast_arena,
+  MatArena grey_arena, small_arena, half_arena, up_arena, sal_arena, blur_arena, box_arena, contrast_arena,
       prob_arena;
   cv::Mat prev_small, cur_small, ref_small, hann;
   cv::Point2d background{0.0, 0.0}, last_shift{0.0, 0.0}, ref_background{0.0, 0.0};
@@ -99,7 +99,6 @@ struct AutoInitializer::Impl {
   std::vector<float> cell_max;
   std::vector<uchar> text_flag;
   cv::Mat prev_grey, still, diff;  // persistent: previous grey frame, per-pixel still count
-  std::vector<cv::Point> cell_arg;
   std::vector<Candidate> candidates;
   std::vector<Track> tracks;
   std::vector<SalientRegion> confirmed, raw;
@@ -185,13 +184,11 @@ struct AutoInitializer::Impl {
       still.setTo(0);
       return;
     }
+    // still = unchanged ? min(255, still + 1) : 0, with OpenCV's vectorised element-wise ops.
     cv::absdiff(grey, prev_grey, diff);
-    for (int r = 0; r < grey.rows; ++r) {
-      const uchar* d = diff.ptr<uchar>(r);
-      uchar* sc = still.ptr<uchar>(r);
-      for (int x = 0; x < grey.cols; ++x)
-        sc[x] = d[x] <= kStillLevel ? static_cast<uchar>(std::min(255, sc[x] + 1)) : 0;
-    }
+    cv::compare(diff, kStillLevel, diff, cv::CMP_LE);  // 255 where unchanged
+    cv::add(still, cv::Scalar(1), still);              // saturating
+    cv::bitwise_and(still, diff, still);
     grey.copyTo(prev_grey);
   }
 
@@ -211,7 +208,15 @@ struct AutoInitializer::Impl {
     mp.saliency_median = 0;
     mbd.compute(half, mp, sal);
     cv::Mat p = prob_arena.get(rows, cols, CV_8U);
-    const int sh = halve ? 1 : 0;
+    cv::Mat sal_full = sal;
+    if (halve) {
+      sal_full = up_arena.get(rows, cols, CV_8U);
+      cv::resize(sal, sal_full(cv::Rect(0, 0, sal.cols * 2, sal.rows * 2)), cv::Size(sal.cols * 2, sal.rows * 2), 0, 0,
+                 cv::INTER_NEAREST);
+      // An odd last row / column copies its neighbour.
+      if (cols > sal.cols * 2) sal_full.col(cols - 2).copyTo(sal_full.col(cols - 1));
+      if (rows > sal.rows * 2) sal_full.row(rows - 2).copyTo(sal_full.row(rows - 1));
+    }
     if (params.auto_init_local_contrast) {
       cv::Mat small_mean = blur_arena.get(rows, cols, CV_8U);
       cv::Mat large_mean = box_arena.get(rows, cols, CV_8U);
@@ -219,25 +224,13 @@ struct AutoInitializer::Impl {
       cv::blur(grey, small_mean, cv::Size(3, 3));
       cv::blur(grey, large_mean, cv::Size(21, 21));
       cv::absdiff(small_mean, large_mean, contrast);
-      for (int r = 0; r < rows; ++r) {
-        const uchar* c = contrast.ptr<uchar>(r);
-        const uchar* s = sal.ptr<uchar>(std::min(r >> sh, sal.rows - 1));
-        uchar* o = p.ptr<uchar>(r);
-        const int last = sal.cols - 1;
-        for (int x = 0; x < cols; ++x) {
-          // Contrast is stretched x2 (saturating) first: small targets rarely reach 64 levels of
-          // local contrast, and the product must not vanish in 8 bits.
-          const int cc = std::min(255, 2 * c[x]);
-          o[x] = static_cast<uchar>((cc * s[std::min(x >> sh, last)] + 127) / 255);
-        }
-      }
+      // P = min(255, 2 contrast) x S / 255: contrast is stretched x2 (saturating) because small
+      // targets rarely reach 128 levels of local contrast and the product must not vanish in
+      // 8 bits.
+      cv::add(contrast, contrast, contrast);
+      cv::multiply(contrast, sal_full, p, 1.0 / 255.0);
     } else {
-      for (int r = 0; r < rows; ++r) {
-        const uchar* s = sal.ptr<uchar>(std::min(r >> sh, sal.rows - 1));
-        uchar* o = p.ptr<uchar>(r);
-        const int last = sal.cols - 1;
-        for (int x = 0; x < cols; ++x) o[x] = s[std::min(x >> sh, last)];
-      }
+      sal_full.copyTo(p);
     }
     return p;
   }
@@ -247,17 +240,15 @@ struct AutoInitializer::Impl {
     const int rows = p.rows, cols = p.cols;
     const int gw = (cols + kCell - 1) / kCell, gh = (rows + kCell - 1) / kCell;
     cell_max.assign(static_cast<size_t>(gw) * gh, -1.0f);
-    cell_arg.assign(static_cast<size_t>(gw) * gh, cv::Point(0, 0));
     int global_max = 0;
     for (int r = 0; r < rows; ++r) {
       const uchar* o = p.ptr<uchar>(r);
-      const int gr = r / kCell;
-      for (int x = 0; x < cols; ++x) {
-        const size_t k = static_cast<size_t>(gr) * gw + x / kCell;
-        if (o[x] > cell_max[k]) {
-          cell_max[k] = o[x];
-          cell_arg[k] = cv::Point(x, r);
-        }
+      float* cm = &cell_max[static_cast<size_t>(r / kCell) * gw];
+      for (int gx = 0; gx < gw; ++gx) {
+        const int x0 = gx * kCell, x1 = std::min(cols, x0 + kCell);
+        uchar m = 0;
+        for (int x = x0; x < x1; ++x) m = std::max(m, o[x]);  // vectorisable max
+        cm[gx] = std::max(cm[gx], static_cast<float>(m));
       }
     }
     for (float v : cell_max) global_max = std::max(global_max, static_cast<int>(v));
@@ -279,7 +270,19 @@ struct AutoInitializer::Impl {
         if (!is_max) continue;
         Candidate c;
         c.peak = v;
-        c.centre = cell_arg[static_cast<size_t>(gy) * gw + gx];
+        // Where in the cell the maximum is (first in raster order).
+        const int x0 = gx * kCell, y0 = gy * kCell;
+        const int x1 = std::min(cols, x0 + kCell), y1 = std::min(rows, y0 + kCell);
+        bool found = false;
+        for (int y = y0; y < y1 && !found; ++y) {
+          const uchar* o = p.ptr<uchar>(y);
+          for (int x = x0; x < x1; ++x)
+            if (o[x] == static_cast<uchar>(v)) {
+              c.centre = cv::Point2f(static_cast<float>(x), static_cast<float>(y));
+              found = true;
+              break;
+            }
+        }
         candidates.push_back(c);
       }
     std::sort(candidates.begin(), candidates.end(),
