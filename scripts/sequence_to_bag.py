@@ -1,0 +1,265 @@
+#!/usr/bin/python3
+# Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
+"""Converts a sequence (OTB folder, folder of images, generated scene, or video) to a rosbag.
+
+usage: sequence_to_bag.py SEQ OUT.bag [--fps F] [--frame-id camera] [--fx FX] [--fy FY]
+                          [--cx CX] [--cy CY] [--hfov DEG] [--gt FILE] [--encoding auto|bgr8|mono8]
+                          [--start-stamp S] [--max-frames N] [--image-topic T] [--info-topic T]
+                          [--gt-topic T]
+
+Writes, per frame i (stamp = start_stamp + i / fps, also the bag time):
+  IMAGE_TOPIC (default /camera/image_raw)    sensor_msgs/Image (bgr8, mono8 or mono16 as decoded)
+  INFO_TOPIC  (default /camera/camera_info)  sensor_msgs/CameraInfo, plumb_bob, no distortion,
+              K from --fx/--fy/--cx/--cy, else the scene's focal_length_px (scene.yaml), else a
+              pinhole with --hfov (default 60 degrees) and the principal point at the centre
+  GT_TOPIC    (default /ground_truth)        obstacle_tracker/ObstacleArray: one obstacle (id 1,
+              confidence 1, STATE_TRACKING) with the ground-truth box; empty when absent
+all with the same header (stamp, frame_id). The frame rate is --fps, else the video's, else the
+`fps` of scene.yaml / fps.txt, else 30 (the OTB convention).
+
+Needs Debian's python3-rosbag, python3-sensor-msgs, python3-opencv, and the package's generated
+Python messages: source <build>/devel/setup.bash, or put <build>/devel/lib/python3/dist-packages
+on PYTHONPATH (OT_DEVEL=<build>/devel also works).
+"""
+import argparse
+import glob
+import math
+import os
+import re
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import otb_metrics  # noqa: E402
+
+IMAGE_EXT = {".jpg", ".jpeg", ".png", ".bmp", ".tif", ".tiff", ".pgm", ".ppm", ".pbm", ".webp"}
+
+
+def import_messages():
+    """The generated obstacle_tracker messages, looking in the usual build folders if needed."""
+    try:
+        from obstacle_tracker.msg import Obstacle, ObstacleArray  # noqa: F401
+        return Obstacle, ObstacleArray
+    except ImportError:
+        pass
+    here = os.path.dirname(os.path.abspath(__file__))
+    candidates = []
+    if os.environ.get("OT_DEVEL"):
+        candidates.append(os.path.join(os.environ["OT_DEVEL"], "lib", "python3", "dist-packages"))
+    candidates += glob.glob(os.path.join(here, "..", "_build", "devel", "lib", "python3", "dist-packages"))
+    for c in candidates:
+        if os.path.isdir(os.path.join(c, "obstacle_tracker", "msg")):
+            sys.path.insert(0, c)
+            # A namespace already imported from elsewhere would hide the generated one.
+            sys.modules.pop("obstacle_tracker", None)
+            try:
+                from obstacle_tracker.msg import Obstacle, ObstacleArray  # noqa: F401
+                return Obstacle, ObstacleArray
+            except ImportError:
+                sys.path.pop(0)
+    sys.exit("sequence_to_bag: cannot import obstacle_tracker.msg; build the package and source "
+             "<build>/devel/setup.bash (or PYTHONPATH=<build>/devel/lib/python3/dist-packages)")
+
+
+def natural_key(name):
+    return [int(t) if t.isdigit() else t.lower() for t in re.split(r"(\d+)", name)]
+
+
+def read_key_value(path, key):
+    """`key: value` / `key=value` / `key value` from a small text file; None when absent."""
+    try:
+        with open(path) as f:
+            for line in f:
+                m = re.match(r"\s*%s\s*[:= ]\s*([-+0-9.eE]+)" % re.escape(key), line)
+                if m:
+                    return float(m.group(1))
+    except OSError:
+        pass
+    return None
+
+
+class SequenceSource:
+    """Frames (decoded as stored) and ground truth of an OTB folder, image folder or video."""
+
+    def __init__(self, path, gt_path=None):
+        import cv2
+        self.cv2 = cv2
+        self.path = path
+        self.fps = None
+        self.meta = {}
+        self.files = []
+        self.capture = None
+        if os.path.isdir(path):
+            img_dir = os.path.join(path, "img") if os.path.isdir(os.path.join(path, "img")) else path
+            self.files = sorted((os.path.join(img_dir, f) for f in os.listdir(img_dir)
+                                 if os.path.splitext(f)[1].lower() in IMAGE_EXT),
+                                key=lambda p: natural_key(os.path.basename(p)))
+            if not self.files:
+                sys.exit("sequence_to_bag: no image in %s" % img_dir)
+            for name in ("scene.yaml", "scene.yml", "scene.txt", "fps.txt"):
+                v = read_key_value(os.path.join(path, name), "fps")
+                if v:
+                    self.fps = v
+                    break
+            self.meta["focal_length_px"] = read_key_value(os.path.join(path, "scene.yaml"), "focal_length_px")
+            if gt_path is None:
+                for name in ("groundtruth_rect.txt", "groundtruth.txt"):
+                    if os.path.isfile(os.path.join(path, name)):
+                        gt_path = os.path.join(path, name)
+                        break
+            self.count = len(self.files)
+        elif os.path.isfile(path):
+            self.capture = cv2.VideoCapture(path)
+            if not self.capture.isOpened():
+                sys.exit("sequence_to_bag: cannot open video %s" % path)
+            v = self.capture.get(cv2.CAP_PROP_FPS)
+            self.fps = v if v and v > 0 and math.isfinite(v) else None
+            self.count = int(self.capture.get(cv2.CAP_PROP_FRAME_COUNT))
+            stem = os.path.splitext(path)[0]
+            folder = os.path.dirname(path)
+            if gt_path is None:
+                for cand in (stem + ".txt", stem + "_gt.txt", os.path.join(folder, "groundtruth_rect.txt")):
+                    if os.path.isfile(cand):
+                        gt_path = cand
+                        break
+            self.meta["focal_length_px"] = read_key_value(os.path.join(folder, "scene.yaml"), "focal_length_px")
+        else:
+            sys.exit("sequence_to_bag: %s does not exist" % path)
+        self.gt = otb_metrics.load_gt(gt_path) if gt_path else []
+        self.gt_path = gt_path
+
+    def frames(self):
+        if self.capture is None:
+            for f in self.files:
+                img = self.cv2.imread(f, self.cv2.IMREAD_UNCHANGED)
+                if img is None:
+                    sys.exit("sequence_to_bag: cannot decode %s" % f)
+                yield img
+        else:
+            while True:
+                ok, img = self.capture.read()
+                if not ok:
+                    return
+                yield img
+
+    def gt_at(self, i):
+        return self.gt[i] if i < len(self.gt) else otb_metrics.ABSENT
+
+
+def image_message(img, encoding, Image):
+    import numpy as np
+    cv2 = sys.modules["cv2"]
+    if img.ndim == 3 and img.shape[2] == 4:
+        img = cv2.cvtColor(img, cv2.COLOR_BGRA2BGR)
+    if encoding == "mono8" and img.ndim == 3:
+        img = cv2.cvtColor(img, cv2.COLOR_BGR2GRAY)
+    elif encoding == "bgr8" and img.ndim == 2:
+        if img.dtype != np.uint8:
+            sys.exit("sequence_to_bag: --encoding bgr8 with a 16-bit frame")
+        img = cv2.cvtColor(img, cv2.COLOR_GRAY2BGR)
+    img = np.ascontiguousarray(img)
+    msg = Image()
+    msg.height, msg.width = img.shape[0], img.shape[1]
+    if img.dtype == np.uint8:
+        msg.encoding = "bgr8" if img.ndim == 3 else "mono8"
+    elif img.dtype == np.uint16 and img.ndim == 2:
+        msg.encoding = "mono16"
+        img = img.astype("<u2")
+    else:
+        sys.exit("sequence_to_bag: unsupported frame type %s x %d" % (img.dtype, 1 if img.ndim == 2 else img.shape[2]))
+    msg.is_bigendian = 0
+    msg.step = img.strides[0]
+    msg.data = img.tobytes()
+    return msg
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("sequence", help="OTB folder, folder of images, generated scene folder or video")
+    ap.add_argument("bag", help="output .bag")
+    ap.add_argument("--fps", type=float, default=None)
+    ap.add_argument("--frame-id", default="camera")
+    ap.add_argument("--fx", type=float, default=None)
+    ap.add_argument("--fy", type=float, default=None)
+    ap.add_argument("--cx", type=float, default=None)
+    ap.add_argument("--cy", type=float, default=None)
+    ap.add_argument("--hfov", type=float, default=60.0, help="horizontal field of view (deg) when no focal length is known")
+    ap.add_argument("--gt", default=None, help="ground-truth file (default: the sequence's)")
+    ap.add_argument("--encoding", choices=["auto", "bgr8", "mono8"], default="auto")
+    ap.add_argument("--start-stamp", type=float, default=1000.0, help="stamp of the first frame, s")
+    ap.add_argument("--max-frames", type=int, default=0, help="stop after N frames (0: all)")
+    ap.add_argument("--image-topic", default="/camera/image_raw")
+    ap.add_argument("--info-topic", default="/camera/camera_info")
+    ap.add_argument("--gt-topic", default="/ground_truth")
+    ap.add_argument("--quiet", action="store_true")
+    args = ap.parse_args(argv)
+
+    import rosbag
+    import rospy
+    from sensor_msgs.msg import CameraInfo, Image
+    Obstacle, ObstacleArray = import_messages()
+
+    src = SequenceSource(args.sequence, args.gt)
+    fps = args.fps or src.fps or 30.0
+    if not (fps > 0):
+        sys.exit("sequence_to_bag: --fps must be > 0")
+    total = src.count if args.max_frames <= 0 else min(src.count, args.max_frames)
+    if not src.gt and not args.quiet:
+        print("sequence_to_bag: no ground truth found; %s carries empty arrays" % args.gt_topic, file=sys.stderr)
+    written = 0
+    with rosbag.Bag(args.bag, "w") as bag:
+        for i, img in enumerate(src.frames()):
+            if args.max_frames > 0 and i >= args.max_frames:
+                break
+            stamp = rospy.Time.from_sec(args.start_stamp + i / fps)
+            im = image_message(img, args.encoding, Image)
+            im.header.seq = i
+            im.header.stamp = stamp
+            im.header.frame_id = args.frame_id
+            h, w = im.height, im.width
+            f_default = src.meta.get("focal_length_px") or (0.5 * w / math.tan(math.radians(args.hfov) / 2))
+            fx = args.fx or f_default
+            fy = args.fy or fx
+            cx = args.cx if args.cx is not None else (w - 1) / 2.0
+            cy = args.cy if args.cy is not None else (h - 1) / 2.0
+            info = CameraInfo()
+            info.header = im.header
+            info.height, info.width = h, w
+            info.distortion_model = "plumb_bob"
+            info.D = [0.0] * 5
+            info.K = [fx, 0.0, cx, 0.0, fy, cy, 0.0, 0.0, 1.0]
+            info.R = [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0]
+            info.P = [fx, 0.0, cx, 0.0, 0.0, fy, cy, 0.0, 0.0, 0.0, 1.0, 0.0]
+            gt = ObstacleArray()
+            gt.header = im.header
+            gt.target_frame = args.frame_id
+            gt.image_width, gt.image_height = w, h
+            box = src.gt_at(i)
+            if not otb_metrics.is_absent(box):
+                o = Obstacle()
+                o.id = 1
+                o.x, o.y, o.width, o.height = box
+                o.confidence = 1.0
+                o.peak = 1.0
+                o.state = Obstacle.STATE_TRACKING
+                o.time_to_contact = math.inf
+                gt.obstacles.append(o)
+            bag.write(args.image_topic, im, stamp)
+            bag.write(args.info_topic, info, stamp)
+            bag.write(args.gt_topic, gt, stamp)
+            written += 1
+            if not args.quiet and sys.stderr.isatty() and (written % 25 == 0 or written == total):
+                print("\rsequence_to_bag: %d/%d frames" % (written, total), end="", file=sys.stderr)
+    if not args.quiet:
+        if sys.stderr.isatty():
+            print("", file=sys.stderr)
+        print("sequence_to_bag: wrote %s: %d frames %dx%d at %g fps (%s, %s, %s), stamps %.3f..%.3f s"
+              % (args.bag, written, w if written else 0, h if written else 0, fps, args.image_topic,
+                 args.info_topic, args.gt_topic, args.start_stamp, args.start_stamp + (written - 1) / fps),
+              file=sys.stderr)
+    if written == 0:
+        sys.exit("sequence_to_bag: no frame written")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
