@@ -7,6 +7,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include <opencv2/core/hal/intrin.hpp>
+
 namespace obstacle_tracker {
 namespace core {
 
@@ -58,67 +60,123 @@ void FhogExtractor::compute(const cv::Mat& patch, int cell, cv::Mat& out) {
   const Directions& dir = directions();
   const float inv_cell = 1.0f / static_cast<float>(cell);
 
+  // Per-column tables (neighbour offsets, cell index and bilinear weights along x), made once per
+  // width; per-row scratch for the winning gradient. Cell centres are at (i + 0.5) * cell.
+  col_left_.resize(w);
+  col_right_.resize(w);
+  col_cell_.resize(w);
+  col_w0_.resize(w);
+  row_dx_.resize(w);
+  row_dy_.resize(w);
+  row_m2_.resize(w);
+  row_bin_.resize(w);
+  for (int x = 0; x < w; ++x) {
+    col_left_[x] = std::max(x - 1, 0) * nc;
+    col_right_[x] = std::min(x + 1, w - 1) * nc;
+    const float xp = (static_cast<float>(x) + 0.5f) * inv_cell - 0.5f;
+    const int ix = static_cast<int>(std::floor(xp));
+    col_cell_[x] = ix;
+    col_w0_[x] = xp - static_cast<float>(ix);  // weight of cell ix + 1
+  }
+  float* gdx = row_dx_.data();
+  float* gdy = row_dy_.data();
+  float* gm2 = row_m2_.data();
+  float* gbin = row_bin_.data();
+
   for (int y = 0; y < h; ++y) {
     const uchar* row = patch.ptr<uchar>(y);
     const uchar* up = patch.ptr<uchar>(std::max(y - 1, 0));
     const uchar* down = patch.ptr<uchar>(std::min(y + 1, h - 1));
-    // Bilinear weights along y (cell centres at (i + 0.5) * cell).
+    // Gradient of the channel with the largest magnitude (replicated border).
+    for (int x = 0; x < w; ++x) gm2[x] = -1.0f;
+    for (int c = 0; c < nc; ++c) {
+      for (int x = 0; x < w; ++x) {
+        const float gx = static_cast<float>(row[col_right_[x] + c]) -
+                         static_cast<float>(row[col_left_[x] + c]);
+        const float gy = static_cast<float>(down[x * nc + c]) - static_cast<float>(up[x * nc + c]);
+        const float m = gx * gx + gy * gy;
+        const bool better = m > gm2[x];
+        gm2[x] = better ? m : gm2[x];
+        gdx[x] = better ? gx : gdx[x];
+        gdy[x] = better ? gy : gdy[x];
+      }
+    }
+    // Nearest of the 18 directions: largest |dot| over the 9 axes, its sign picks the half.
+    // (Bins are kept as floats so the loop runs in OpenCV's universal intrinsics.)
+    int x = 0;
+#if CV_SIMD
+    {
+      const int lanes = cv::v_float32::nlanes;
+      const cv::v_float32 zero = cv::vx_setzero_f32();
+      for (; x <= w - lanes; x += lanes) {
+        const cv::v_float32 vdx = cv::vx_load(gdx + x);
+        const cv::v_float32 vdy = cv::vx_load(gdy + x);
+        cv::v_float32 best = zero;
+        cv::v_float32 bin = zero;
+        for (int k = 0; k < 9; ++k) {
+          const cv::v_float32 d =
+              cv::v_muladd(cv::vx_setall_f32(dir.cx[k]), vdx, cv::vx_setall_f32(dir.cy[k]) * vdy);
+          const cv::v_float32 ad = cv::v_abs(d);
+          const cv::v_float32 better = ad > best;
+          best = cv::v_select(better, ad, best);
+          const cv::v_float32 kb = cv::v_select(d >= zero, cv::vx_setall_f32(static_cast<float>(k)),
+                                                cv::vx_setall_f32(static_cast<float>(k + 9)));
+          bin = cv::v_select(better, kb, bin);
+        }
+        cv::v_store(gbin + x, bin);
+      }
+    }
+#endif
+    for (; x < w; ++x) {
+      float best = 0.0f;
+      float bin = 0.0f;
+      for (int k = 0; k < 9; ++k) {
+        const float d = dir.cx[k] * gdx[x] + dir.cy[k] * gdy[x];
+        const float ad = std::fabs(d);
+        if (ad > best) {
+          best = ad;
+          bin = static_cast<float>(d >= 0.0f ? k : k + 9);
+        }
+      }
+      gbin[x] = bin;
+    }
+    // Grey level (mean over the colour channels) summed per cell.
+    const int grey_row = y / cell;
+    if (grey_row < rows) {
+      float* gr = grey_.data() + static_cast<size_t>(grey_row) * cols;
+      const float inv_nc = 1.0f / static_cast<float>(nc);
+      for (int x = 0; x < cols * cell; ++x) {
+        float g = 0.0f;
+        for (int c = 0; c < nc; ++c) g += static_cast<float>(row[x * nc + c]);
+        gr[x / cell] += g * inv_nc;
+      }
+    }
+    // Bilinear votes into the 4 nearest cells.
     const float yp = (static_cast<float>(y) + 0.5f) * inv_cell - 0.5f;
     const int iy = static_cast<int>(std::floor(yp));
     const float vy0 = yp - static_cast<float>(iy);
     const float vy1 = 1.0f - vy0;
-    const int grey_row = y / cell;
+    float* h0 = iy >= 0 ? hist_.data() + static_cast<size_t>(iy) * cols * kOrientations : nullptr;
+    float* h1 = iy + 1 < rows ? hist_.data() + static_cast<size_t>(iy + 1) * cols * kOrientations
+                              : nullptr;
     for (int x = 0; x < w; ++x) {
-      const int xl = std::max(x - 1, 0);
-      const int xr = std::min(x + 1, w - 1);
-      // Gradient of the channel with the largest magnitude (replicated border).
-      float dx = 0.0f;
-      float dy = 0.0f;
-      float best = -1.0f;
-      float grey = 0.0f;
-      for (int c = 0; c < nc; ++c) {
-        const float gx = static_cast<float>(row[xr * nc + c]) - static_cast<float>(row[xl * nc + c]);
-        const float gy = static_cast<float>(down[x * nc + c]) - static_cast<float>(up[x * nc + c]);
-        const float m = gx * gx + gy * gy;
-        if (m > best) {
-          best = m;
-          dx = gx;
-          dy = gy;
-        }
-        grey += static_cast<float>(row[x * nc + c]);
-      }
-      if (grey_row < rows && x / cell < cols) {
-        grey_[grey_row * cols + x / cell] += grey / static_cast<float>(nc);
-      }
-      if (best <= 0.0f) continue;
-      const float mag = std::sqrt(best);
-      int bin = 0;
-      float best_dot = 0.0f;
-      for (int k = 0; k < 9; ++k) {
-        const float d = dir.cx[k] * dx + dir.cy[k] * dy;
-        if (d > best_dot) {
-          best_dot = d;
-          bin = k;
-        } else if (-d > best_dot) {
-          best_dot = -d;
-          bin = k + 9;
-        }
-      }
-      const float xp = (static_cast<float>(x) + 0.5f) * inv_cell - 0.5f;
-      const int ix = static_cast<int>(std::floor(xp));
-      const float vx0 = xp - static_cast<float>(ix);
+      if (gm2[x] <= 0.0f) continue;
+      const float mag = std::sqrt(gm2[x]);
+      const int bin = static_cast<int>(gbin[x]);
+      const int ix = col_cell_[x];
+      const float vx0 = col_w0_[x];
       const float vx1 = 1.0f - vx0;
       const bool x0_in = ix >= 0;
       const bool x1_in = ix + 1 < cols;
-      if (iy >= 0) {
-        float* hr = hist_.data() + static_cast<size_t>(iy) * cols * kOrientations;
-        if (x0_in) hr[ix * kOrientations + bin] += vx1 * vy1 * mag;
-        if (x1_in) hr[(ix + 1) * kOrientations + bin] += vx0 * vy1 * mag;
+      if (h0 != nullptr) {
+        const float m = vy1 * mag;
+        if (x0_in) h0[ix * kOrientations + bin] += vx1 * m;
+        if (x1_in) h0[(ix + 1) * kOrientations + bin] += vx0 * m;
       }
-      if (iy + 1 < rows) {
-        float* hr = hist_.data() + static_cast<size_t>(iy + 1) * cols * kOrientations;
-        if (x0_in) hr[ix * kOrientations + bin] += vx1 * vy0 * mag;
-        if (x1_in) hr[(ix + 1) * kOrientations + bin] += vx0 * vy0 * mag;
+      if (h1 != nullptr) {
+        const float m = vy0 * mag;
+        if (x0_in) h1[ix * kOrientations + bin] += vx1 * m;
+        if (x1_in) h1[(ix + 1) * kOrientations + bin] += vx0 * m;
       }
     }
   }

@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include <opencv2/core/hal/hal.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "obstacle_tracker/core/fhog.h"
@@ -92,7 +93,9 @@ struct KcfTracker::Impl {
 
   // Buffers, made once per template size.
   FhogExtractor fhog;
-  cv::Mat patch, inter;    // template-size patch; intermediate for area downscaling
+  cv::Mat patch, shrunk;   // template-size patch; box-shrunk frame region for large windows
+  std::vector<float> col_a;
+  std::vector<int> col_i0, col_i1, row_acc;
   cv::Mat feat;            // (C * rows) x cols, CV_32F, windowed features
   cv::Mat cos_window;      // rows x cols
   cv::Mat yf;              // label spectrum, rows x cols CV_32FC2
@@ -103,6 +106,18 @@ struct KcfTracker::Impl {
   cv::Mat corr_f, corr, k, kf, resp_f;
   std::vector<cv::Mat> resp;  // one response per scale
   cv::Mat new_alphaf;
+  // DFT plans made once per template size (cv::dft builds and frees a plan on every call).
+  cv::Ptr<cv::hal::DFT2D> fwd_plan;  // real -> full complex spectrum
+  cv::Ptr<cv::hal::DFT2D> inv_plan;  // conjugate-symmetric spectrum -> real, scaled by 1/N
+
+  void forward(const cv::Mat& src, cv::Mat& dst) {
+    dst.create(rows, cols, CV_32FC2);
+    fwd_plan->apply(src.data, src.step, dst.data, dst.step);
+  }
+  void inverse(const cv::Mat& src, cv::Mat& dst) {
+    dst.create(rows, cols, CV_32F);
+    inv_plan->apply(src.data, src.step, dst.data, dst.step);
+  }
 
   explicit Impl(const Params& p) { setParams(p); }
 
@@ -111,40 +126,97 @@ struct KcfTracker::Impl {
     validate(params);
   }
 
-  // Frame window (centre c, size ws) -> template patch, border replication, area-averaged when
-  // shrinking by more than 1.5 so that large targets are not aliased.
+  // Frame window (centre c, size ws) -> template patch (tw x th), bilinear, border replication.
+  // When the window is at least twice the template, the covered part of the frame is first
+  // shrunk by an integer box filter (qx x qy pixels per sample) so a large target is not aliased.
+  // Written out (not cv::warpAffine / cv::resize) because those allocate on every call.
   void extractPatch(const cv::Mat& frame, cv::Point2f c, cv::Size2f ws) {
+    const int nc = frame.channels();
     patch.create(th, tw, frame.type());
     const double fx = ws.width / tw;
     const double fy = ws.height / th;
     const double x0 = c.x - ws.width * 0.5;
     const double y0 = c.y - ws.height * 0.5;
-    const cv::Rect frame_rect(0, 0, frame.cols, frame.rows);
-    const cv::Rect roi = cv::Rect(static_cast<int>(std::floor(x0)), static_cast<int>(std::floor(y0)),
-                                  static_cast<int>(std::ceil(x0 + ws.width)) -
-                                      static_cast<int>(std::floor(x0)),
-                                  static_cast<int>(std::ceil(y0 + ws.height)) -
-                                      static_cast<int>(std::floor(y0))) &
-                         frame_rect;
-    if ((fx > 1.5 || fy > 1.5) && roi.width >= 2 && roi.height >= 2) {
-      const int iw = std::max(1, std::min(tw + 2, static_cast<int>(std::lround(roi.width / fx))));
-      const int ih = std::max(1, std::min(th + 2, static_cast<int>(std::lround(roi.height / fy))));
-      if (inter.rows < th + 2 || inter.cols < tw + 2 || inter.type() != frame.type()) {
-        inter.create(th + 2, tw + 2, frame.type());
+    int qx = std::max(1, static_cast<int>(std::floor(fx)));
+    int qy = std::max(1, static_cast<int>(std::floor(fy)));
+    // Source image and its coordinate map: source pixel j has its centre at frame x = ox + (j +
+    // 0.5) * qx - 0.5.
+    const uchar* src = frame.data;
+    size_t src_step = frame.step;
+    int sw = frame.cols, sh = frame.rows;
+    int ox = 0, oy = 0;
+    if (qx > 1 || qy > 1) {
+      const int rx0 = std::max(0, static_cast<int>(std::floor(x0)) - qx);
+      const int ry0 = std::max(0, static_cast<int>(std::floor(y0)) - qy);
+      const int rx1 = std::min(frame.cols, static_cast<int>(std::ceil(x0 + ws.width)) + qx);
+      const int ry1 = std::min(frame.rows, static_cast<int>(std::ceil(y0 + ws.height)) + qy);
+      const int nw = (rx1 - rx0) / qx;
+      const int nh = (ry1 - ry0) / qy;
+      if (nw >= 1 && nh >= 1) {
+        shrinkBox(frame, rx0, ry0, nw, nh, qx, qy);
+        src = shrunk.data;
+        src_step = shrunk.step;
+        sw = nw;
+        sh = nh;
+        ox = rx0;
+        oy = ry0;
+      } else {
+        qx = qy = 1;
       }
-      cv::Mat small = inter(cv::Rect(0, 0, iw, ih));
-      cv::resize(frame(roi), small, small.size(), 0, 0, cv::INTER_AREA);
-      const double sx = static_cast<double>(roi.width) / iw;  // frame px per intermediate px
-      const double sy = static_cast<double>(roi.height) / ih;
-      // dst u -> frame x = x0 + (u + 0.5) fx - 0.5 -> intermediate i = (x - roi.x + 0.5) / sx - 0.5
-      const cv::Matx23d m(fx / sx, 0.0, (x0 - roi.x + 0.5 * fx) / sx - 0.5,
-                          0.0, fy / sy, (y0 - roi.y + 0.5 * fy) / sy - 0.5);
-      cv::warpAffine(small, patch, m, patch.size(), cv::INTER_LINEAR | cv::WARP_INVERSE_MAP,
-                     cv::BORDER_REPLICATE);
-    } else {
-      const cv::Matx23d m(fx, 0.0, x0 + 0.5 * fx - 0.5, 0.0, fy, y0 + 0.5 * fy - 0.5);
-      cv::warpAffine(frame, patch, m, patch.size(), cv::INTER_LINEAR | cv::WARP_INVERSE_MAP,
-                     cv::BORDER_REPLICATE);
+    }
+    // Column and row tables: frame x = x0 + (u + 0.5) fx - 0.5 -> source j = (x - ox + 0.5)/qx - 0.5.
+    for (int u = 0; u < tw; ++u) {
+      const double j = (x0 + (u + 0.5) * fx - ox) / qx - 0.5;
+      const double jf = std::floor(j);
+      const int j0 = static_cast<int>(jf);
+      col_a[u] = static_cast<float>(j - jf);
+      col_i0[u] = std::min(std::max(j0, 0), sw - 1) * nc;
+      col_i1[u] = std::min(std::max(j0 + 1, 0), sw - 1) * nc;
+    }
+    for (int v = 0; v < th; ++v) {
+      const double i = (y0 + (v + 0.5) * fy - oy) / qy - 0.5;
+      const double iff = std::floor(i);
+      const int i0 = static_cast<int>(iff);
+      const float b = static_cast<float>(i - iff);
+      const uchar* r0 = src + static_cast<size_t>(std::min(std::max(i0, 0), sh - 1)) * src_step;
+      const uchar* r1 = src + static_cast<size_t>(std::min(std::max(i0 + 1, 0), sh - 1)) * src_step;
+      uchar* out = patch.ptr<uchar>(v);
+      for (int u = 0; u < tw; ++u) {
+        const float a = col_a[u];
+        const int k0 = col_i0[u], k1 = col_i1[u];
+        for (int ch = 0; ch < nc; ++ch) {
+          const float top = r0[k0 + ch] + a * (static_cast<float>(r0[k1 + ch]) - r0[k0 + ch]);
+          const float bot = r1[k0 + ch] + a * (static_cast<float>(r1[k1 + ch]) - r1[k0 + ch]);
+          out[u * nc + ch] = static_cast<uchar>(top + b * (bot - top) + 0.5f);
+        }
+      }
+    }
+  }
+
+  // Mean of qx x qy blocks of frame starting at (rx0, ry0) -> shrunk (nh x nw), reusing buffers.
+  void shrinkBox(const cv::Mat& frame, int rx0, int ry0, int nw, int nh, int qx, int qy) {
+    const int nc = frame.channels();
+    if (shrunk.type() != frame.type() || shrunk.rows < nh || shrunk.cols < nw) {
+      shrunk.create(std::max(nh, shrunk.rows), std::max(nw, shrunk.cols), frame.type());
+    }
+    const int row_len = nw * qx * nc;
+    if (static_cast<int>(row_acc.size()) < row_len) row_acc.resize(row_len);
+    const float inv = 1.0f / static_cast<float>(qx * qy);
+    for (int y = 0; y < nh; ++y) {
+      std::fill(row_acc.begin(), row_acc.begin() + row_len, 0);
+      for (int k = 0; k < qy; ++k) {
+        const uchar* r = frame.ptr<uchar>(ry0 + y * qy + k) + static_cast<size_t>(rx0) * nc;
+        for (int i = 0; i < row_len; ++i) row_acc[i] += r[i];
+      }
+      uchar* out = shrunk.ptr<uchar>(y);
+      for (int x = 0; x < nw; ++x) {
+        for (int ch = 0; ch < nc; ++ch) {
+          int sum = 0;
+          const int* acc = row_acc.data() + x * qx * nc + ch;
+          for (int k = 0; k < qx; ++k) sum += acc[k * nc];
+          out[x * nc + ch] = static_cast<uchar>(static_cast<float>(sum) * inv + 0.5f);
+        }
+      }
     }
   }
 
@@ -159,7 +231,7 @@ struct KcfTracker::Impl {
       cv::multiply(plane, cos_window, plane);
       energy += plane.dot(plane);
       cv::Mat dst = out_f.rowRange(ch * rows, (ch + 1) * rows);
-      cv::dft(plane, dst, cv::DFT_COMPLEX_OUTPUT);
+      forward(plane, dst);
     }
     return static_cast<float>(energy);
   }
@@ -169,13 +241,13 @@ struct KcfTracker::Impl {
   // Result: kf = F(k^{xz}).
   void gaussianCorrelation(const cv::Mat& xf, float xx, const cv::Mat& zf_in, float zz) {
     corr_f.create(rows, cols, CV_32FC2);
-    corr_f.setTo(0.0f);
     const int n = rows * cols;
+    std::fill(corr_f.ptr<float>(), corr_f.ptr<float>() + 2 * n, 0.0f);  // (setTo allocates)
     for (int ch = 0; ch < kChannels; ++ch) {
       accumulateConjProduct(zf_in.ptr<float>(ch * rows), xf.ptr<float>(ch * rows),
                             corr_f.ptr<float>(), n);
     }
-    cv::dft(corr_f, corr, cv::DFT_INVERSE | cv::DFT_REAL_OUTPUT | cv::DFT_SCALE);
+    inverse(corr_f, corr);
     const float sigma = static_cast<float>(params.kcf_kernel_sigma);
     const float scale = -1.0f / (sigma * sigma * static_cast<float>(n * kChannels));
     k.create(rows, cols, CV_32F);
@@ -186,7 +258,7 @@ struct KcfTracker::Impl {
       kp[i] = d * scale;
     }
     cv::exp(k, k);
-    cv::dft(k, kf, cv::DFT_COMPLEX_OUTPUT);
+    forward(k, kf);
   }
 
   void buildGeometry(const cv::Mat& frame, const cv::Rect2f& box) {
@@ -234,13 +306,28 @@ struct KcfTracker::Impl {
         y.at<float>(r, c) = std::exp(-0.5f * static_cast<float>(dr * dr + dc * dc) / (sigma * sigma));
       }
     }
-    cv::dft(y, yf, cv::DFT_COMPLEX_OUTPUT);
+    fwd_plan = cv::hal::DFT2D::create(cols, rows, CV_32F, 1, 2, cv::DFT_COMPLEX_OUTPUT);
+    inv_plan = cv::hal::DFT2D::create(cols, rows, CV_32F, 2, 1,
+                                      cv::DFT_INVERSE | cv::DFT_REAL_OUTPUT | cv::DFT_SCALE);
+    forward(y, yf);
+    corr_f.create(rows, cols, CV_32FC2);
+    corr.create(rows, cols, CV_32F);
+    k.create(rows, cols, CV_32F);
+    kf.create(rows, cols, CV_32FC2);
+    resp_f.create(rows, cols, CV_32FC2);
 
     const int count = std::max(1, params.scale_count);
     scales.resize(count);
     for (int i = 0; i < count; ++i) {
       scales[i] = static_cast<float>(std::pow(params.scale_step, i - (count - 1) / 2.0));
     }
+    col_a.resize(tw);
+    col_i0.resize(tw);
+    col_i1.resize(tw);
+    // The shrunk region is at most about twice the template (fx / floor(fx) < 2); a row of the
+    // accumulator at most a frame row.
+    shrunk.create(2 * th + 8, 2 * tw + 8, frame.type());
+    if (static_cast<int>(row_acc.size()) < frame.cols * 3) row_acc.resize(frame.cols * 3);
     resp.resize(count);
     for (auto& r : resp) r.create(rows, cols, CV_32F);
     model_xf.create(kChannels * rows, cols, CV_32FC2);
@@ -287,7 +374,7 @@ struct KcfTracker::Impl {
     const float zz = featuresSpectrum(frame, c, ws, zf);
     gaussianCorrelation(model_xf, model_xx, zf, zz);
     cv::mulSpectrums(kf, model_alphaf, resp_f, 0, false);
-    cv::dft(resp_f, out, cv::DFT_INVERSE | cv::DFT_REAL_OUTPUT | cv::DFT_SCALE);
+    inverse(resp_f, out);
   }
 
   // Sub-cell peak position by a parabola through log values (exact for a Gaussian peak), plain
@@ -430,8 +517,9 @@ KcfResult KcfTracker::update(const cv::Mat& frame) {
   m.center.x = std::min(std::max(m.center.x, 0.0f), static_cast<float>(frame.cols));
   m.center.y = std::min(std::max(m.center.y, 0.0f), static_cast<float>(frame.rows));
 
-  // Scale, bounded so a drifting filter cannot blow the box up or shrink it to nothing.
-  float applied = s;
+  // Scale, bounded so a drifting filter cannot blow the box up or shrink it to nothing, and kept
+  // when the response is not trusted (an occluder or clutter must not resize the box).
+  float applied = result.confidence >= p.learn_threshold ? s : 1.0f;
   applied = std::min(applied, m.max_target.width / m.target.width);
   applied = std::min(applied, m.max_target.height / m.target.height);
   applied = std::max(applied, m.min_target.width / m.target.width);
@@ -447,7 +535,7 @@ KcfResult KcfTracker::update(const cv::Mat& frame) {
   const float zz = m.featuresSpectrum(frame, m.center, m.window, m.zf);
   m.gaussianCorrelation(m.model_xf, m.model_xx, m.zf, zz);
   cv::mulSpectrums(m.kf, m.model_alphaf, m.resp_f, 0, false);
-  cv::dft(m.resp_f, m.resp[0], cv::DFT_INVERSE | cv::DFT_REAL_OUTPUT | cv::DFT_SCALE);
+  m.inverse(m.resp_f, m.resp[0]);
   cv::Point loc;
   cv::minMaxLoc(m.resp[0], nullptr, nullptr, nullptr, &loc);
   const cv::Point2f residual = m.subCellPeak(m.resp[0], loc);
