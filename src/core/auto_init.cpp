@@ -21,8 +21,12 @@
 //      has moved that far against both the image (an overlay or a target the camera keeps still
 //      stays put in the image) and the background (a static scene object moves exactly with the
 //      background);
-//   5. score of a confirmed track: mean peak of P x seen share; x 0.5 below the horizon when
-//      auto_init_horizon_prior is set (horizon: the strongest row-mean step of the shrunk frame).
+//   5. score of a confirmed track: mean peak of P x seen share x min(1, motion / (3 x
+//      auto_init_min_motion)); x 0.5 below the horizon when auto_init_horizon_prior is set
+//      (horizon: the strongest row-mean step of the shrunk frame);
+//   6. the box of a confirmed track is refined by the saliency detector (FastMBD + Otsu) in a
+//      window of 4 x the box (at least 32 px) at native resolution, when its best region
+//      contains the track's centre.
 // Each cue can be switched off by its parameter; init_table measures what each one brings.
 #include <algorithm>
 #include <array>
@@ -48,6 +52,7 @@ constexpr int kStillFrames = 3;     // frames a pixel must be unchanged to count
 constexpr int kStillLevel = 3;      // grey levels of change still counted as unchanged
 constexpr float kStillShare = 0.85f;
 constexpr float kGrowShare = 0.3f;
+constexpr double kRefineWindowScale = 4.0;  // window around a confirmed candidate for its box
 constexpr float kMaxAspect = 4.5f;      // candidate boxes more elongated are lines
 constexpr double kMinLinearity = 0.5;   // share of position variance a steady motion explains  // a candidate's region: pixels >= this share of its peak
 
@@ -87,6 +92,7 @@ struct Track {
 struct AutoInitializer::Impl {
   Params params;
   MbdSaliency mbd;
+  SaliencyDetector refiner;
   MatArena grey_arena, small_arena, half_arena, up_arena, sal_arena, blur_arena, box_arena, contrast_arena,
       prob_arena;
   cv::Mat prev_small, cur_small, ref_small, hann;
@@ -506,7 +512,21 @@ struct AutoInitializer::Impl {
     return r;
   }
 
-  void confirm() {
+  // The candidate's region is the core of the target (>= 0.3 x the peak of P); the saliency
+  // detector in a window around it, at native resolution, gives the object's own extent. Kept
+  // when the best region there contains the candidate's centre.
+  void refine(const cv::Mat& frame, SalientRegion& region) {
+    const auto& found = refiner.detectInWindow(frame, region.box);
+    const cv::Point2f c(region.box.x + 0.5f * region.box.width, region.box.y + 0.5f * region.box.height);
+    for (const SalientRegion& r : found) {
+      if (!r.box.contains(c)) continue;
+      region.box = r.box;
+      region.area = r.area;
+      break;
+    }
+  }
+
+  void confirm(const cv::Mat& frame) {
     confirmed.clear();
     raw.clear();
     for (const Candidate& c : candidates) raw.push_back(toRegion(c.box, c.area, c.mean, c.peak / 255.0, c.touches_border));
@@ -526,7 +546,9 @@ struct AutoInitializer::Impl {
         score *= std::min(1.0, motion / (3.0 * params.auto_init_min_motion));
       }
       if (params.auto_init_horizon_prior && horizon >= 0 && t.centre.y > horizon) score *= 0.5;
-      confirmed.push_back(toRegion(t.box, t.area, t.last_mean, score, t.touches_border));
+      SalientRegion region = toRegion(t.box, t.area, t.last_mean, score, t.touches_border);
+      refine(frame, region);
+      confirmed.push_back(region);
     }
     std::sort(confirmed.begin(), confirmed.end(),
               [](const SalientRegion& a, const SalientRegion& b) { return a.score > b.score; });
@@ -539,6 +561,10 @@ AutoInitializer::~AutoInitializer() { delete impl_; }
 void AutoInitializer::setParams(const Params& params) {
   impl_->params = params;
   validate(impl_->params);
+  Params refine = impl_->params;
+  refine.search_window_scale = kRefineWindowScale;
+  refine.min_object_area = 1.0;
+  impl_->refiner.setParams(refine);
 }
 
 void AutoInitializer::reset() { impl_->reset(); }
@@ -563,7 +589,7 @@ const std::vector<SalientRegion>& AutoInitializer::update(const cv::Mat& frame, 
   const cv::Mat p = m.candidateMap(grey);
   m.findCandidates(p);
   m.associate();
-  m.confirm();
+  m.confirm(frame);
   ++m.frame_index;
   return m.confirmed;
 }
