@@ -22,8 +22,8 @@
 //      stays put in the image) and the background (a static scene object moves exactly with the
 //      background);
 //   5. score of a confirmed track: mean peak of P x seen share x min(1, motion / (3 x
-//      auto_init_min_motion)); x 0.5 below the horizon when auto_init_horizon_prior is set
-//      (horizon: the strongest row-mean step of the shrunk frame);
+//      auto_init_min_motion)); with auto_init_horizon_prior, a track below the horizon (the
+//      strongest row-mean step of the shrunk frame) needs twice the frames and scores x 0.5;
 //   6. the box of a confirmed track is refined by the saliency detector (FastMBD + Otsu) in a
 //      window of 4 x the box (at least 32 px) at native resolution, when its best region
 //      contains the track's centre.
@@ -53,6 +53,7 @@ constexpr int kStillLevel = 3;      // grey levels of change still counted as un
 constexpr float kStillShare = 0.85f;
 constexpr float kGrowShare = 0.3f;
 constexpr double kRefineWindowScale = 4.0;  // window around a confirmed candidate for its box
+constexpr float kRefineMaxGrowth = 16.0f;   // a refined box may cover at most 16 x the candidate's
 constexpr float kMaxAspect = 4.5f;      // candidate boxes more elongated are lines
 constexpr double kMinLinearity = 0.5;   // share of position variance a steady motion explains  // a candidate's region: pixels >= this share of its peak
 
@@ -518,8 +519,9 @@ struct AutoInitializer::Impl {
   void refine(const cv::Mat& frame, SalientRegion& region) {
     const auto& found = refiner.detectInWindow(frame, region.box);
     const cv::Point2f c(region.box.x + 0.5f * region.box.width, region.box.y + 0.5f * region.box.height);
+    const float max_area = kRefineMaxGrowth * std::max(16.0f, region.box.area());
     for (const SalientRegion& r : found) {
-      if (!r.box.contains(c)) continue;
+      if (!r.box.contains(c) || r.box.area() > max_area) continue;
       region.box = r.box;
       region.area = r.area;
       break;
@@ -530,12 +532,14 @@ struct AutoInitializer::Impl {
     confirmed.clear();
     raw.clear();
     for (const Candidate& c : candidates) raw.push_back(toRegion(c.box, c.area, c.mean, c.peak / 255.0, c.touches_border));
-    const int need = params.auto_init_frames;
     for (const Track& t : tracks) {
+      // Soft sky prior: below the horizon a track must persist twice as long.
+      const bool below = params.auto_init_horizon_prior && horizon >= 0 && t.centre.y > horizon;
+      const int need = below ? 2 * params.auto_init_frames : params.auto_init_frames;
       if (t.last_frame != frame_index || t.hits < need) continue;
       const int age = frame_index - t.first_frame + 1;
       const double seen = static_cast<double>(t.hits) / age;
-      if (need > 1 && seen < 0.6) continue;
+      if (params.auto_init_frames > 1 && seen < 0.6) continue;
       if (params.auto_init_shape_filter && isLine(t.box)) continue;
       double score = t.sum_peak / (255.0 * t.hits) * seen;
       if (params.auto_init_min_motion > 0.0) {
@@ -545,7 +549,7 @@ struct AutoInitializer::Impl {
         // Steady motion raises the score up to 3x the threshold.
         score *= std::min(1.0, motion / (3.0 * params.auto_init_min_motion));
       }
-      if (params.auto_init_horizon_prior && horizon >= 0 && t.centre.y > horizon) score *= 0.5;
+      if (below) score *= 0.5;
       SalientRegion region = toRegion(t.box, t.area, t.last_mean, score, t.touches_border);
       refine(frame, region);
       confirmed.push_back(region);

@@ -208,6 +208,13 @@ int main(int argc, char** argv) {
     oc::Params border = d;
     border.reject_border_regions = false;
     variants.push_back({"defaults, border regions kept", border});
+    for (double m : {2.0, 6.0, 8.0}) {
+      oc::Params mm = d;
+      mm.auto_init_min_motion = m;
+      static std::vector<std::string> names;  // keeps the variant names alive
+      names.push_back("defaults, min motion " + std::to_string(static_cast<int>(m)) + " px");
+      variants.push_back({names.back().c_str(), mm});
+    }
     oc::Params fast = d;
     fast.auto_init_frames = 5;
     variants.push_back({"defaults, 5 frames", fast});

@@ -57,7 +57,7 @@ namespace core {
   X(bool, auto_init_local_contrast, true, false, true, "",                                         \
     "auto-init candidates from native-resolution local contrast x MBD (false: MBD alone)")       \
   X(bool, auto_init_horizon_prior, false, false, true, "",                                         \
-    "halve the auto-init score of candidates below the estimated horizon")                       \
+    "auto-init tracks below the estimated horizon need twice the frames and score half")                       \
   X(int, auto_init_candidates, 24, 1, 64, "", "candidates examined per frame by auto-initialisation") \
   X(bool, auto_init_reject_text, true, false, true, "",                                            \
     "drop auto-init candidates in rows of similar components (on-screen text)")                   \
