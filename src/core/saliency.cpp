@@ -10,7 +10,8 @@
 //
 // Ranking score: the region's saliency mass, area (full-frame px^2) x mean saliency in [0, 1].
 // Between regions of similar saliency this is the paper's "largest region"; it keeps a large but
-// faint patch from outranking a compact bright one. In windowed re-detection the mass is
+// faint patch from outranking a compact bright one. saliency_rank_by_area = true gives the
+// paper's rule exactly (score = area). In windowed re-detection the mass is
 // multiplied by exp(-d^2 / (2 s^2)), d the distance of the region's box centre from the window
 // centre (the last position) and s half the window's longer side, so that of two similar
 // candidates the one nearer the last position wins (ALGORITHMS.md, re-detection).
@@ -287,7 +288,7 @@ double RegionExtractor::extract(const cv::Mat& map, const Geometry& g, const Par
     reg.box = cv::Rect2f(g.offset.x + a.x0 * g.sx, g.offset.y + a.y0 * g.sy, (a.x1 - a.x0 + 1) * g.sx,
                          (a.y1 - a.y0 + 1) * g.sy);
     reg.mean_saliency = static_cast<float>(a.sum / (255.0 * a.area));
-    reg.score = reg.area * reg.mean_saliency;
+    reg.score = params.saliency_rank_by_area ? reg.area : reg.area * reg.mean_saliency;
     if (g.centre_prior) {
       const float dx = 0.5f * (a.x0 + a.x1 + 1) - cx, dy = 0.5f * (a.y0 + a.y1 + 1) - cy;
       reg.score *= std::exp(-(dx * dx + dy * dy) / (2.0f * sigma * sigma));

@@ -287,6 +287,9 @@ int main(int argc, char** argv) {
     oc::Params border = d;
     border.reject_border_regions = false;
     options.push_back({"border regions kept", border});
+    oc::Params by_area = d;
+    by_area.saliency_rank_by_area = true;
+    options.push_back({"ranked by area (the paper) instead of saliency mass", by_area});
     std::printf("\n## One-frame detector options: best-ranked region on frames 1, 6, 11, ... of the first %d\n\n",
                 max_frames);
     std::printf("| option | mean IoU (all) | centre <= 20 px (all) | mean IoU (non-flying) | centre <= 20 px (flying) |\n");

@@ -48,6 +48,8 @@ namespace core {
     "add MB+'s image-border contrast (backgroundness) map")                                       \
   X(bool, saliency_postprocess, false, false, true, "",                                            \
     "MB+ smoothing by morphological reconstruction and sigmoid contrast stretch")                 \
+  X(bool, saliency_rank_by_area, false, false, true, "",                                           \
+    "rank salient regions by area (the paper) instead of saliency mass (area x mean saliency)")  \
   X(bool, reject_border_regions, true, false, true, "",                                            \
     "ignore salient regions that touch the frame border")                                         \
   X(int, auto_init_frames, 8, 1, 100, "frames",                                                    \

@@ -65,8 +65,8 @@ class RegionExtractor {
   std::vector<Accumulator> acc_;
 };
 
-// Ranking score of a region (documented in saliency.cpp): saliency mass = area * mean saliency,
-// times a centre prior in windowed mode.
+// Ranking score of a region (documented in saliency.cpp): saliency mass = area * mean saliency
+// (or area alone with saliency_rank_by_area), times a centre prior in windowed mode.
 
 }  // namespace core
 }  // namespace obstacle_tracker
