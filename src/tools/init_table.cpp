@@ -199,9 +199,10 @@ int main(int argc, char** argv) {
     oc::Params no_static = d;
     no_static.auto_init_reject_static = false;
     variants.push_back({"defaults, no still-pixel rejection", no_static});
-    oc::Params no_shape = d;
-    no_shape.auto_init_shape_filter = false;
-    variants.push_back({"defaults, no line-shape filter", no_shape});
+    oc::Params shape = d;
+    shape.auto_init_shape_filter = !d.auto_init_shape_filter;
+    variants.push_back({shape.auto_init_shape_filter ? "defaults + line-shape filter" : "defaults, no line-shape filter",
+                        shape});
     oc::Params horizon = d;
     horizon.auto_init_horizon_prior = true;
     variants.push_back({"defaults + horizon prior", horizon});
