@@ -30,6 +30,8 @@ constexpr int kMinCells = 8;        // smallest side of the cell grid
 constexpr float kMaxWindowAspect = 2.0f;  // longer / shorter side of the filter window, at most
 constexpr float kMinTargetSide = 4.0f;    // scale search never shrinks a side below this (px)
 constexpr float kMaxPsr = 100.0f;
+constexpr float kScaleModelArea = 512.0f;  // DSST's scale model size (32 x 16 px)
+constexpr float kScaleLambda = 0.01f;      // DSST's regulariser
 
 float clamp01(float v) { return std::min(1.0f, std::max(0.0f, v)); }
 
@@ -106,6 +108,23 @@ struct KcfTracker::Impl {
   cv::Mat corr_f, corr, k, kf, resp_f;
   std::vector<cv::Mat> resp;  // one response per scale
   cv::Mat new_alphaf;
+  // DSST scale filter (Danelljan et al., BMVC 2014): one column of fHOG features per scale.
+  bool use_scale_filter = false;
+  int scale_n = 1;                 // scales of the scale filter (S)
+  int scale_dim = 0;               // feature length per scale (D)
+  int sm_w = 0, sm_h = 0;          // scale model patch size, px
+  std::vector<float> scale_window; // 1-D Hann over the scales
+  std::vector<float> dsst_factors; // a^(n - (S-1)/2)
+  cv::Mat scale_patch, scale_feat;
+  cv::Mat scale_x;                 // D x S, CV_32F
+  cv::Mat scale_xf;                // D x S, CV_32FC2 (DFT of each row)
+  cv::Mat scale_num;               // D x S, CV_32FC2: conj(F) * G, interpolated
+  cv::Mat scale_den;               // 1 x S, CV_32F: sum_d |F_d|^2, interpolated
+  cv::Mat scale_new_den;
+  cv::Mat scale_yf;                // 1 x S, CV_32FC2
+  cv::Mat scale_resp_f, scale_resp;
+  cv::Ptr<cv::hal::DFT2D> scale_fwd_plan, scale_inv_plan;
+
   // DFT plans made once per template size (cv::dft builds and frees a plan on every call).
   cv::Ptr<cv::hal::DFT2D> fwd_plan;  // real -> full complex spectrum
   cv::Ptr<cv::hal::DFT2D> inv_plan;  // conjugate-symmetric spectrum -> real, scaled by 1/N
@@ -131,8 +150,13 @@ struct KcfTracker::Impl {
   // shrunk by an integer box filter (qx x qy pixels per sample) so a large target is not aliased.
   // Written out (not cv::warpAffine / cv::resize) because those allocate on every call.
   void extractPatch(const cv::Mat& frame, cv::Point2f c, cv::Size2f ws) {
+    resample(frame, c, ws, tw, th, patch);
+  }
+
+  // Same into dst (dh x dw), for any destination size up to the template's.
+  void resample(const cv::Mat& frame, cv::Point2f c, cv::Size2f ws, int tw, int th, cv::Mat& dst) {
     const int nc = frame.channels();
-    patch.create(th, tw, frame.type());
+    dst.create(th, tw, frame.type());
     const double fx = ws.width / tw;
     const double fy = ws.height / th;
     const double x0 = c.x - ws.width * 0.5;
@@ -180,7 +204,7 @@ struct KcfTracker::Impl {
       const float b = static_cast<float>(i - iff);
       const uchar* r0 = src + static_cast<size_t>(std::min(std::max(i0, 0), sh - 1)) * src_step;
       const uchar* r1 = src + static_cast<size_t>(std::min(std::max(i0 + 1, 0), sh - 1)) * src_step;
-      uchar* out = patch.ptr<uchar>(v);
+      uchar* out = dst.ptr<uchar>(v);
       for (int u = 0; u < tw; ++u) {
         const float a = col_a[u];
         const int k0 = col_i0[u], k1 = col_i1[u];
@@ -316,7 +340,8 @@ struct KcfTracker::Impl {
     kf.create(rows, cols, CV_32FC2);
     resp_f.create(rows, cols, CV_32FC2);
 
-    const int count = std::max(1, params.scale_count);
+    use_scale_filter = params.kcf_scale_filter;
+    const int count = use_scale_filter ? 1 : std::max(1, params.scale_count);
     scales.resize(count);
     for (int i = 0; i < count; ++i) {
       scales[i] = static_cast<float>(std::pow(params.scale_step, i - (count - 1) / 2.0));
@@ -427,6 +452,127 @@ struct KcfTracker::Impl {
     return static_cast<float>(std::min<double>(kMaxPsr, (peak - mean) / sd));
   }
 
+  // Scale samples at centre c around target size t: column n holds the windowed fHOG features of
+  // the box t * a^(n - (S-1)/2), resized to the scale model size (DSST, sec. 3).
+  void scaleSamples(const cv::Mat& frame, cv::Point2f c, cv::Size2f t) {
+    for (int n = 0; n < scale_n; ++n) {
+      const float f = dsst_factors[n];
+      resample(frame, c, cv::Size2f(t.width * f, t.height * f), sm_w, sm_h, scale_patch);
+      fhog.compute(scale_patch, cell, scale_feat);
+      const float* src = scale_feat.ptr<float>();
+      const float w = scale_window[n];
+      for (int d = 0; d < scale_dim; ++d) scale_x.at<float>(d, n) = src[d] * w;
+    }
+    scale_fwd_plan->apply(scale_x.data, scale_x.step, scale_xf.data, scale_xf.step);
+  }
+
+  // Trains the scale filter on samples at the current centre and size (rate eta; 1 = replace).
+  void trainScale(const cv::Mat& frame, float eta) {
+    scaleSamples(frame, center, target);
+    const float* g = scale_yf.ptr<float>();
+    float* den = scale_new_den.ptr<float>();
+    std::fill(den, den + scale_n, 0.0f);
+    for (int d = 0; d < scale_dim; ++d) {
+      const float* xf = scale_xf.ptr<float>(d);
+      float* num = scale_num.ptr<float>(d);
+      for (int n = 0; n < scale_n; ++n) {
+        const float xr = xf[2 * n], xi = xf[2 * n + 1];
+        // G * conj(F)
+        const float nr = g[2 * n] * xr + g[2 * n + 1] * xi;
+        const float ni = g[2 * n + 1] * xr - g[2 * n] * xi;
+        num[2 * n] = eta >= 1.0f ? nr : (1.0f - eta) * num[2 * n] + eta * nr;
+        num[2 * n + 1] = eta >= 1.0f ? ni : (1.0f - eta) * num[2 * n + 1] + eta * ni;
+        den[n] += xr * xr + xi * xi;
+      }
+    }
+    float* model_den = scale_den.ptr<float>();
+    for (int n = 0; n < scale_n; ++n) {
+      model_den[n] = eta >= 1.0f ? den[n] : (1.0f - eta) * model_den[n] + eta * den[n];
+    }
+  }
+
+  // Scale factor (relative to the current size) that the scale filter finds at the centre.
+  float detectScale(const cv::Mat& frame) {
+    scaleSamples(frame, center, target);
+    float* rf = scale_resp_f.ptr<float>();
+    std::fill(rf, rf + 2 * scale_n, 0.0f);
+    for (int d = 0; d < scale_dim; ++d) {
+      const float* zf_row = scale_xf.ptr<float>(d);
+      const float* num = scale_num.ptr<float>(d);
+      for (int n = 0; n < scale_n; ++n) {
+        rf[2 * n] += num[2 * n] * zf_row[2 * n] - num[2 * n + 1] * zf_row[2 * n + 1];
+        rf[2 * n + 1] += num[2 * n] * zf_row[2 * n + 1] + num[2 * n + 1] * zf_row[2 * n];
+      }
+    }
+    const float* den = scale_den.ptr<float>();
+    for (int n = 0; n < scale_n; ++n) {
+      const float inv = 1.0f / (den[n] + kScaleLambda);
+      rf[2 * n] *= inv;
+      rf[2 * n + 1] *= inv;
+    }
+    scale_inv_plan->apply(scale_resp_f.data, scale_resp_f.step, scale_resp.data, scale_resp.step);
+    const float* r = scale_resp.ptr<float>();
+    int best = 0;
+    for (int n = 1; n < scale_n; ++n) {
+      if (r[n] > r[best]) best = n;
+    }
+    // Sub-scale peak (parabola), not past the sampled range.
+    float pos = static_cast<float>(best);
+    if (best > 0 && best < scale_n - 1) {
+      const float den2 = r[best - 1] - 2.0f * r[best] + r[best + 1];
+      if (den2 < 0.0f) pos += std::max(-0.5f, std::min(0.5f, 0.5f * (r[best - 1] - r[best + 1]) / den2));
+    }
+    return static_cast<float>(std::pow(params.scale_step, pos - (scale_n - 1) * 0.5f));
+  }
+
+  void buildScaleFilter(const cv::Mat& frame) {
+    scale_n = std::max(1, params.scale_count);
+    if (scale_n % 2 == 0) ++scale_n;  // odd, so the unit scale is sampled
+    // Scale model: the target (no padding) resized to at most kScaleModelArea pixels, at least
+    // two cells a side.
+    const float area = target.area();
+    const float k = area > kScaleModelArea ? std::sqrt(kScaleModelArea / area) : 1.0f;
+    sm_w = std::max(2 * cell, static_cast<int>(std::lround(target.width * k)));
+    sm_h = std::max(2 * cell, static_cast<int>(std::lround(target.height * k)));
+    sm_w = std::min(sm_w, std::max(tw, 2 * cell));
+    sm_h = std::min(sm_h, std::max(th, 2 * cell));
+    scale_dim = kChannels * (sm_w / cell) * (sm_h / cell);
+    dsst_factors.resize(scale_n);
+    scale_window.resize(scale_n);
+    for (int n = 0; n < scale_n; ++n) {
+      dsst_factors[n] = static_cast<float>(std::pow(params.scale_step, n - (scale_n - 1) / 2.0));
+      scale_window[n] =
+          scale_n == 1 ? 1.0f
+                       : static_cast<float>(0.5 - 0.5 * std::cos(2.0 * M_PI * (n + 1) / (scale_n + 1)));
+    }
+    scale_x.create(scale_dim, scale_n, CV_32F);
+    scale_xf.create(scale_dim, scale_n, CV_32FC2);
+    scale_num.create(scale_dim, scale_n, CV_32FC2);
+    scale_den.create(1, scale_n, CV_32F);
+    scale_new_den.create(1, scale_n, CV_32F);
+    scale_resp_f.create(1, scale_n, CV_32FC2);
+    scale_resp.create(1, scale_n, CV_32F);
+    // Label: Gaussian over the scale index, peak at the centre, sigma = sqrt(S) / 4 (DSST).
+    const float sigma = std::sqrt(static_cast<float>(scale_n)) * 0.25f;
+    cv::Mat ys(1, scale_n, CV_32F);
+    for (int n = 0; n < scale_n; ++n) {
+      const float d = static_cast<float>(n) - (scale_n - 1) * 0.5f;
+      ys.at<float>(0, n) = std::exp(-0.5f * d * d / (sigma * sigma));
+    }
+    cv::dft(ys, scale_yf, cv::DFT_COMPLEX_OUTPUT | cv::DFT_ROWS);
+    scale_fwd_plan = cv::hal::DFT2D::create(scale_n, scale_dim, CV_32F, 1, 2,
+                                            cv::DFT_ROWS | cv::DFT_COMPLEX_OUTPUT);
+    scale_inv_plan = cv::hal::DFT2D::create(scale_n, 1, CV_32F, 2, 1,
+                                            cv::DFT_ROWS | cv::DFT_INVERSE | cv::DFT_REAL_OUTPUT |
+                                                cv::DFT_SCALE);
+    if (static_cast<int>(col_a.size()) < sm_w) {
+      col_a.resize(sm_w);
+      col_i0.resize(sm_w);
+      col_i1.resize(sm_w);
+    }
+    trainScale(frame, 1.0f);
+  }
+
   cv::Rect2f boxAt(cv::Point2f c, cv::Size2f s) const {
     return cv::Rect2f(c.x - s.width * 0.5f, c.y - s.height * 0.5f, s.width, s.height);
   }
@@ -473,6 +619,7 @@ void KcfTracker::init(const cv::Mat& frame, const cv::Rect2f& box) {
   impl_->initialized = false;
   impl_->buildGeometry(frame, box);
   impl_->train(frame, 1.0f);
+  if (impl_->use_scale_filter) impl_->buildScaleFilter(frame);
   impl_->initialized = true;
 }
 
@@ -545,10 +692,23 @@ KcfResult KcfTracker::update(const cv::Mat& frame) {
   }
   result.box = m.boxAt(m.center, m.target);
 
-  if (result.confidence >= p.learn_threshold && p.learning_rate > 0.0) {
-    m.trainOnSpectrum(zz, static_cast<float>(p.learning_rate));
-    result.model_updated = true;
+  const bool learn = result.confidence >= p.learn_threshold && p.learning_rate > 0.0;
+  if (learn) m.trainOnSpectrum(zz, static_cast<float>(p.learning_rate));
+
+  // DSST scale filter at the new centre (only when the response is trusted).
+  if (m.use_scale_filter && result.confidence >= p.learn_threshold) {
+    float f = m.detectScale(frame);
+    f = std::min(f, m.max_target.width / m.target.width);
+    f = std::min(f, m.max_target.height / m.target.height);
+    f = std::max(f, m.min_target.width / m.target.width);
+    f = std::max(f, m.min_target.height / m.target.height);
+    m.target = cv::Size2f(m.target.width * f, m.target.height * f);
+    m.window = cv::Size2f(m.window.width * f, m.window.height * f);
+    result.scale_change = f;
+    result.box = m.boxAt(m.center, m.target);
+    if (learn) m.trainScale(frame, static_cast<float>(p.learning_rate));
   }
+  result.model_updated = learn;
   return result;
 }
 

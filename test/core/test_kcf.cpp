@@ -111,12 +111,24 @@ TEST_P(KcfSubPixel, KnownShiftsAreFoundWithinAQuarterPixel) {
 
 INSTANTIATE_TEST_SUITE_P(GreyAndColour, KcfSubPixel, ::testing::Values(CV_8UC1, CV_8UC3));
 
-TEST(Kcf, FollowsAGrowingPatternWithin5PercentScale) {
+// Scale search (3 scales) and the DSST scale filter (17 scales) must both follow a growing and then
+// shrinking pattern.
+class KcfScale : public ::testing::TestWithParam<bool> {};
+
+TEST_P(KcfScale, FollowsAGrowingPatternWithin5PercentScale) {
   const cv::Mat bg = makeTexture(160, 3);
   const cv::Mat obj = makeTexture(64, 4);
   const cv::Size fs(320, 240);
   const double side0 = 40.0;
   oc::Params p;
+  p.kcf_scale_filter = GetParam();
+  if (p.kcf_scale_filter) {
+    p.scale_count = 17;
+    p.scale_step = 1.03;
+  } else {
+    p.scale_count = 3;
+    p.scale_step = 1.05;
+  }
   oc::KcfTracker kcf(p);
   kcf.init(renderFrame(bg, obj, fs, 150, 120, side0, CV_8UC1),
            cv::Rect2f(150 - 20, 120 - 20, 40, 40));
@@ -132,14 +144,16 @@ TEST(Kcf, FollowsAGrowingPatternWithin5PercentScale) {
   const double est = std::sqrt(r.box.area()) / side0;
   EXPECT_NEAR(est, side / side0, 0.05 * side / side0) << "estimated scale " << est;
   EXPECT_LT(cv::norm(centre(r.box) - cv::Point2f(static_cast<float>(x), 120.0f)), 2.0);
-  // And shrinking back.
+  // And shrinking back to 1.0 over 10 frames.
   for (int i = 1; i <= 10; ++i) {
-    side = side0 * 1.15 * (1.0 - 0.012 * i);
+    side = side0 * 1.15 * (1.0 - 0.013 * i);
     r = kcf.update(renderFrame(bg, obj, fs, x, 120, side, CV_8UC1));
   }
   const double est2 = std::sqrt(r.box.area()) / side0;
   EXPECT_NEAR(est2, side / side0, 0.05 * side / side0) << "estimated scale " << est2;
 }
+
+INSTANTIATE_TEST_SUITE_P(SearchAndFilter, KcfScale, ::testing::Values(false, true));
 
 TEST(Kcf, FullOcclusionDropsConfidenceAndFreezesTheModel) {
   const cv::Mat bg = makeTexture(160, 5);

@@ -83,7 +83,9 @@ namespace core {
   X(double, scale_penalty, 0.98, 0.5, 1.0, "",                                                     \
     "factor on the response peak of non-unit scales (favours keeping the size)")                  \
   X(double, kcf_min_window, 16.0, 0.0, 1024.0, "px",                                               \
-    "smallest side of the filter window in frame pixels (context for tiny targets)")
+    "smallest side of the filter window in frame pixels (context for tiny targets)")              \
+  X(bool, kcf_scale_filter, false, false, true, "",                                                \
+    "scale by a DSST 1-D scale filter over scale_count scales (else search them with the KCF)")
 
 #define OT_PARAMS(X) OT_LOOP_PARAMS(X) OT_SALIENCY_PARAMS(X) OT_TRACKER_PARAMS(X)
 
