@@ -323,7 +323,8 @@ struct SaliencyDetector::Impl {
       // Area averaging is the right filter for shrinking, but OpenCV's INTER_AREA is fast only
       // for integer factors: average by the largest integer factor f first, then finish with a
       // bilinear step of less than 2x.
-      const int f = static_cast<int>(1.0 / s);
+      int f = static_cast<int>(1.0 / s);
+      while (f >= 2 && (roi.width / f < w || roi.height / f < h)) --f;  // mid image >= target
       if (f >= 2) {
         cv::Mat mid = mid_arena.get(roi.height / f, roi.width / f, frame.type());
         cv::resize(src(cv::Rect(0, 0, mid.cols * f, mid.rows * f)), mid, mid.size(), 0, 0, cv::INTER_AREA);

@@ -365,3 +365,23 @@ TEST(Saliency, BadInputThrows) {
   EXPECT_THROW(det.detectInWindow(cv::Mat(10, 10, CV_16UC1, cv::Scalar(0)), cv::Rect2f(0, 0, 5, 5)),
                std::invalid_argument);
 }
+
+TEST(Saliency, TinyAndThinFramesAreHandled) {
+  oc::SaliencyDetector det;
+  for (const cv::Size sz : {cv::Size(1, 1), cv::Size(2, 2), cv::Size(1, 500), cv::Size(700, 1), cv::Size(3, 3),
+                            cv::Size(5000, 4)}) {
+    for (int type : {CV_8UC1, CV_8UC3}) {
+      cv::Mat f(sz, type, cv::Scalar::all(90));
+      EXPECT_NO_THROW(det.detect(f)) << sz;
+      EXPECT_NO_THROW(det.detectInWindow(f, cv::Rect2f(0, 0, 1, 1))) << sz;
+      EXPECT_TRUE(det.detect(f).empty()) << sz;  // a flat frame has nothing salient
+    }
+  }
+  // A box half outside the frame: window clipped, regions inside the frame.
+  cv::Mat f(100, 100, CV_8UC1, cv::Scalar(30));
+  f(cv::Rect(85, 40, 10, 10)).setTo(200);
+  const auto& r = det.detectInWindow(f, cv::Rect2f(88, 38, 20, 14));
+  ASSERT_FALSE(r.empty());
+  EXPECT_FLOAT_EQ(r[0].box.x, 85.0f);
+  EXPECT_LE(r[0].box.x + r[0].box.width, 100.0f);
+}

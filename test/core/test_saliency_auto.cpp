@@ -144,4 +144,6 @@ TEST(AutoInit, BadInputThrows) {
   EXPECT_NO_THROW(init.update(cv::Mat(64, 64, CV_8UC1, cv::Scalar(0)), 0.0));
   EXPECT_NO_THROW(init.update(cv::Mat(80, 96, CV_8UC3, cv::Scalar(0)), 0.04));
   EXPECT_NO_THROW(init.update(cv::Mat(2, 2, CV_8UC1, cv::Scalar(0)), 0.08));
+  for (const cv::Size sz : {cv::Size(1, 1), cv::Size(1, 500), cv::Size(700, 1), cv::Size(5000, 4), cv::Size(70, 65)})
+    for (int i = 0; i < 3; ++i) EXPECT_NO_THROW(init.update(cv::Mat(sz, CV_8UC1, cv::Scalar(i * 40)), 0.1 * i)) << sz;
 }
