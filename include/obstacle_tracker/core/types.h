@@ -31,6 +31,7 @@ struct Obstacle {
   double expansion_rate = 0.0;    // d ln(sqrt(w*h)) / dt, 1/s (positive when growing)
   double time_to_contact = std::numeric_limits<double>::infinity();  // s; +inf when not closing
   int age = 0;                    // frames since the track started
+  bool model_updated = false;     // the filter learned from this frame (false under occlusion)
 };
 
 }  // namespace core

@@ -1,0 +1,565 @@
+// Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
+//
+// The closed detection-tracking loop of Bharati et al. (T-IV 2018), extended to several
+// obstacles and looming (DESIGN.md "Core contracts", ALGORITHMS.md "Re-detection that does not
+// jump to a distractor", "Looming").
+//
+// Per track, per frame:
+//   tracking     KcfTracker::update. peak >= peak_threshold: the new box is kept. Otherwise the
+//                track re-detects in the same frame.
+//   re-detecting candidates = the filter's own answer at the predicted position plus the salient
+//                regions inside search_window_scale x the box around the prediction (constant
+//                velocity since the last good frame); each gets a prior from its saliency, its
+//                distance to the prediction and its size/aspect against the last box; the best
+//                few are verified by correlating the filter model at them (KcfTracker::evaluate,
+//                no state change) and the best verified one whose peak >= redetect_min_peak is
+//                accepted: the filter restarts (init) on its box, so the box takes the object's
+//                current size and shape. A frame without an accepted candidate is a failure; more
+//                than max_redetect_failures consecutive failures end the track (reported once
+//                with state kLost, then removed).
+//   searching    while there is room for a track, AutoInitializer is fed every
+//                detection_interval frames; confirmed candidates that do not overlap a track
+//                become tracks.
+// With max_obstacles > 1: tracks overlapping by more than merge_iou are merged (the older one
+// stays), and in a re-detection a second well-separated salient region that verifies poorly
+// against the model (a split) starts a new track when there is room.
+//
+// Reported confidence = KcfResult::confidence (mapping in kcf.h) of the frame's final answer.
+#include "obstacle_tracker/core/pipeline.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "obstacle_tracker/core/kcf.h"
+#include "obstacle_tracker/core/looming.h"
+#include "obstacle_tracker/core/saliency.h"
+
+namespace obstacle_tracker {
+namespace core {
+
+namespace {
+
+constexpr float kVelocitySmoothing = 0.5f;   // weight of the newest displacement in the EMA
+constexpr float kMaxPredictionBoxes = 2.0f;  // predicted shift capped at this many box sides
+constexpr float kDistanceSigma = 0.5f;       // distance prior sigma, fraction of the window side
+constexpr float kSizeSigma = 0.7f;           // size prior sigma on |ln(area ratio)| / 2
+constexpr float kSpawnMaxIou = 0.05f;        // a new track must not overlap an existing one
+
+float iou(const cv::Rect2f& a, const cv::Rect2f& b) {
+  const float inter = (a & b).area();
+  const float uni = a.area() + b.area() - inter;
+  return uni > 0.0f ? inter / uni : 0.0f;
+}
+
+cv::Point2f centre(const cv::Rect2f& b) { return {b.x + 0.5f * b.width, b.y + 0.5f * b.height}; }
+
+cv::Rect2f centredAt(const cv::Point2f& c, const cv::Size2f& s) {
+  return {c.x - 0.5f * s.width, c.y - 0.5f * s.height, s.width, s.height};
+}
+
+// Keeps the box's centre inside the frame (the box may still stick out).
+cv::Rect2f clampCentre(const cv::Rect2f& b, const cv::Size& frame) {
+  cv::Point2f c = centre(b);
+  c.x = std::min(std::max(c.x, 0.0f), static_cast<float>(frame.width - 1));
+  c.y = std::min(std::max(c.y, 0.0f), static_cast<float>(frame.height - 1));
+  return centredAt(c, b.size());
+}
+
+bool usableBox(const cv::Rect2f& b, const cv::Size& frame) {
+  if (!std::isfinite(b.x) || !std::isfinite(b.y) || !std::isfinite(b.width) ||
+      !std::isfinite(b.height) || b.width < 1.0f || b.height < 1.0f) {
+    return false;
+  }
+  return (b & cv::Rect2f(0.0f, 0.0f, static_cast<float>(frame.width), static_cast<float>(frame.height)))
+             .area() > 0.0f;
+}
+
+int stateRank(TrackState s) {
+  switch (s) {
+    case TrackState::kTracking:
+      return 0;
+    case TrackState::kRedetecting:
+      return 1;
+    case TrackState::kLost:
+      return 2;
+    case TrackState::kSearching:
+      break;
+  }
+  return 3;
+}
+
+}  // namespace
+
+struct Pipeline::Impl {
+  struct Track {
+    explicit Track(const Params& p) : kcf(p), looming(p.looming_window) {}
+    int id = -1;
+    KcfTracker kcf;
+    LoomingEstimator looming;
+    TrackState state = TrackState::kTracking;
+    cv::Rect2f box;             // box reported this frame
+    cv::Rect2f good_box;        // last box accepted with a good peak
+    double good_stamp = 0.0;
+    cv::Point2f velocity{0.0f, 0.0f};  // px/s, centre
+    bool have_velocity = false;
+    int failures = 0;
+    int age = 0;
+    KcfResult result;
+    // Running means of the peak and PSR on good frames (LMCF, Wang et al. CVPR 2017).
+    float ref_peak = 0.0f, ref_psr = 0.0f;
+    int ref_count = 0;
+    float learn_gate = -1.0f;  // learn_threshold currently set in the filter
+  };
+
+  struct Candidate {
+    cv::Rect2f box;
+    float prior = 0.0f;
+    bool from_filter = false;
+    const SalientRegion* region = nullptr;
+  };
+
+  explicit Impl(const Params& p) : params(p), saliency(p), autoinit(p) {
+    validate(params);
+    saliency.setParams(params);
+    autoinit.setParams(params);
+    tracks.reserve(16);
+    pool.reserve(16);
+    out.reserve(16);
+    candidates.reserve(64);
+    spawn.reserve(16);
+  }
+
+  Params params;
+  Params pending;
+  bool have_pending = false;
+  SaliencyDetector saliency;
+  AutoInitializer autoinit;
+  std::vector<std::unique_ptr<Track>> tracks;
+  std::vector<std::unique_ptr<Track>> pool;  // ended tracks, reused (their filter buffers too)
+  std::vector<Obstacle> out;
+  std::vector<Candidate> candidates;
+  std::vector<cv::Rect2f> spawn;
+  int next_id = 0;
+  long frame_index = 0;
+  double last_stamp = -std::numeric_limits<double>::infinity();
+  cv::Size frame_size;
+  bool autoinit_fresh = true;
+
+  static void checkFrame(const cv::Mat& frame, const char* who) {
+    if (frame.empty()) throw std::invalid_argument(std::string(who) + ": empty frame");
+    if (frame.type() != CV_8UC1 && frame.type() != CV_8UC3) {
+      throw std::invalid_argument(std::string(who) +
+                                  ": frame must be CV_8UC1 (grey) or CV_8UC3 (BGR), got type " +
+                                  std::to_string(frame.type()));
+    }
+  }
+
+  void resetAll() {
+    while (!tracks.empty()) {
+      pool.push_back(std::move(tracks.back()));
+      tracks.pop_back();
+    }
+    autoinit.reset();
+    autoinit_fresh = true;
+    out.clear();
+    last_stamp = -std::numeric_limits<double>::infinity();
+    frame_index = 0;
+  }
+
+  void applyPending() {
+    if (!have_pending) return;
+    const int old_window = params.looming_window;
+    params = pending;
+    have_pending = false;
+    saliency.setParams(params);
+    autoinit.setParams(params);
+    for (auto& t : tracks) {
+      t->kcf.setParams(params);
+      if (params.looming_window != old_window) t->looming.setWindow(params.looming_window);
+    }
+    for (auto& t : pool) t->kcf.setParams(params);
+    while (static_cast<int>(tracks.size()) > params.max_obstacles) {
+      pool.push_back(std::move(tracks.back()));
+      tracks.pop_back();
+    }
+  }
+
+  // Frame bookkeeping shared by process() and startTrack().
+  void beginFrame(const cv::Mat& frame, double stamp, const char* who) {
+    checkFrame(frame, who);
+    if (!std::isfinite(stamp)) throw std::invalid_argument(std::string(who) + ": stamp is not finite");
+    applyPending();
+    if (stamp < last_stamp || (frame_size.area() > 0 && frame.size() != frame_size)) resetAll();
+    frame_size = frame.size();
+    last_stamp = stamp;
+    ++frame_index;
+    // Tracks reported lost last frame are gone now.
+    for (std::size_t i = 0; i < tracks.size();) {
+      if (tracks[i]->state == TrackState::kLost) {
+        pool.push_back(std::move(tracks[i]));
+        tracks.erase(tracks.begin() + static_cast<long>(i));
+      } else {
+        ++i;
+      }
+    }
+  }
+
+  Track& newTrack(const cv::Mat& frame, double stamp, const cv::Rect2f& box) {
+    std::unique_ptr<Track> t;
+    if (!pool.empty()) {
+      t = std::move(pool.back());
+      pool.pop_back();
+      t->kcf.setParams(params);
+      if (t->looming.window() != std::max(3, params.looming_window)) {
+        t->looming.setWindow(params.looming_window);
+      }
+    } else {
+      t = std::make_unique<Track>(params);
+    }
+    t->kcf.init(frame, box);
+    t->id = next_id++;
+    t->state = TrackState::kTracking;
+    t->box = box;
+    t->good_box = box;
+    t->good_stamp = stamp;
+    t->velocity = {0.0f, 0.0f};
+    t->have_velocity = false;
+    t->failures = 0;
+    t->age = 0;
+    t->result = KcfResult();
+    t->result.box = box;
+    t->result.peak = 1.0f;
+    t->result.psr = KcfTracker::kConfidencePsrFull;
+    t->result.confidence = 1.0f;
+    t->result.model_updated = true;
+    t->ref_peak = t->ref_psr = 0.0f;
+    t->ref_count = 0;
+    t->learn_gate = -1.0f;
+    t->looming.reset();
+    t->looming.add(stamp, box);
+    tracks.push_back(std::move(t));
+    return *tracks.back();
+  }
+
+  void acceptGood(Track& t, const cv::Rect2f& box, double stamp, bool restarted) {
+    const double dt = stamp - t.good_stamp;
+    if (dt > 0.0) {
+      const cv::Point2f v = (centre(box) - centre(t.good_box)) * static_cast<float>(1.0 / dt);
+      t.velocity = t.have_velocity ? (1.0f - kVelocitySmoothing) * t.velocity + kVelocitySmoothing * v : v;
+      t.have_velocity = true;
+    }
+    if (restarted) t.looming.markDiscontinuity();
+    t.looming.add(stamp, box);
+    t.box = box;
+    t.good_box = box;
+    t.good_stamp = stamp;
+    t.state = TrackState::kTracking;
+    t.failures = 0;
+  }
+
+  cv::Rect2f predict(const Track& t, double stamp) const {
+    cv::Point2f shift(0.0f, 0.0f);
+    if (t.have_velocity) {
+      shift = t.velocity * static_cast<float>(stamp - t.good_stamp);
+      const float cap = kMaxPredictionBoxes * std::max(t.good_box.width, t.good_box.height);
+      const float n = std::hypot(shift.x, shift.y);
+      if (n > cap) shift *= cap / n;
+    }
+    return clampCentre(centredAt(centre(t.good_box) + shift, t.good_box.size()), frame_size);
+  }
+
+  // One re-detection attempt; true when a candidate was accepted (the filter restarted).
+  bool redetect(Track& t, const cv::Mat& frame, double stamp) {
+    const cv::Rect2f pred = predict(t, stamp);
+    const cv::Rect window = SaliencyDetector::searchWindow(frame_size, pred, params.search_window_scale);
+    candidates.clear();
+    // The filter's own answer around the prediction.
+    Candidate own;
+    own.box = pred;
+    own.prior = 1.0f;
+    own.from_filter = true;
+    candidates.push_back(own);
+    if (window.area() > 0) {
+      const std::vector<SalientRegion>& regions = saliency.detectInWindow(frame, pred);
+      float best_score = 0.0f;
+      for (const auto& r : regions) best_score = std::max(best_score, r.score);
+      const float side = static_cast<float>(std::max(window.width, window.height));
+      const float sigma_d = kDistanceSigma * side;
+      const float last_area = std::max(1.0f, t.good_box.area());
+      const float last_aspect = t.good_box.width / std::max(1.0f, t.good_box.height);
+      for (const auto& r : regions) {
+        if (!usableBox(r.box, frame_size)) continue;
+        const cv::Point2f d = centre(r.box) - centre(pred);
+        const float dist = std::exp(-(d.x * d.x + d.y * d.y) / (2.0f * sigma_d * sigma_d));
+        const float la = 0.5f * std::log(std::max(1.0f, r.box.area()) / last_area);
+        const float lr = std::log((r.box.width / std::max(1.0f, r.box.height)) / std::max(1e-3f, last_aspect));
+        const float size = std::exp(-(la * la + 0.25f * lr * lr) / (2.0f * kSizeSigma * kSizeSigma));
+        const float sal = best_score > 0.0f ? std::sqrt(std::max(0.0f, r.score) / best_score) : 0.0f;
+        Candidate c;
+        c.box = r.box;
+        c.prior = sal * dist * size;
+        c.region = &r;
+        candidates.push_back(c);
+      }
+    }
+    // Best priors first (the filter's own candidate keeps prior 1 and goes first).
+    std::sort(candidates.begin() + 1, candidates.end(),
+              [](const Candidate& a, const Candidate& b) { return a.prior > b.prior; });
+    const std::size_t verify =
+        std::min<std::size_t>(candidates.size(), 1 + static_cast<std::size_t>(params.redetect_candidates));
+    const float accept = goodPeak(t);
+    int best = -1;
+    float best_final = 0.0f;
+    KcfResult best_result;
+    for (std::size_t i = 0; i < verify; ++i) {
+      KcfResult r = t.kcf.evaluate(frame, candidates[i].box);
+      if (i == 0) t.result = r;  // the filter's answer at the prediction, reported if none passes
+      if (!(r.peak >= accept)) continue;
+      const float final_score = r.peak * (0.5f + 0.5f * candidates[i].prior);
+      if (final_score > best_final) {
+        best_final = final_score;
+        best = static_cast<int>(i);
+        best_result = r;
+      }
+    }
+    // A split: with room for more tracks, a clearly separated, strong salient region that is
+    // not the accepted one becomes a new track (handled by the caller after the loop).
+    if (params.max_obstacles > 1) {
+      for (std::size_t i = 1; i < candidates.size(); ++i) {
+        if (static_cast<int>(i) == best || candidates[i].prior < 0.5f) continue;
+        if (best >= 0 && iou(candidates[i].box, candidates[static_cast<std::size_t>(best)].box) > 0.0f) continue;
+        spawn.push_back(candidates[i].box);
+        break;
+      }
+    }
+    if (best < 0) return false;
+    const Candidate& c = candidates[static_cast<std::size_t>(best)];
+    // The filter's own candidate: keep its box (its size); a salient region: its own box, so the
+    // box takes the object's current size and shape (the paper's re-initialisation).
+    cv::Rect2f box = c.from_filter ? best_result.box : c.box;
+    if (!usableBox(box, frame_size)) return false;
+    t.kcf.init(frame, box);
+    t.learn_gate = -1.0f;  // init keeps the filter's params; set the gate again next frame
+    t.result = best_result;
+    t.result.box = box;
+    t.result.model_updated = true;
+    acceptGood(t, box, stamp, /*restarted=*/!c.from_filter);
+    return true;
+  }
+
+  // The peak a frame needs to count as good: the paper's absolute test plus a fraction of the
+  // track's running mean peak (so that an occluder that still correlates with the background
+  // context is not taken for the target).
+  float goodPeak(const Track& t) const {
+    float th = static_cast<float>(params.peak_threshold);
+    if (t.ref_count >= kRefWarmup) th = std::max(th, static_cast<float>(params.relative_peak_threshold) * t.ref_peak);
+    return th;
+  }
+
+  // Learning gate for the next update: learn_threshold, raised to the confidence of a response
+  // at learn_relative_threshold x the running mean peak and PSR (LMCF's rule), capped so that a
+  // perfect history does not freeze the model.
+  void setLearnGate(Track& t) {
+    float gate = static_cast<float>(params.learn_threshold);
+    if (t.ref_count >= kRefWarmup && params.learn_relative_threshold > 0.0) {
+      const float k = static_cast<float>(params.learn_relative_threshold);
+      gate = std::max(gate, std::min(kMaxLearnGate, KcfTracker::confidenceFrom(k * t.ref_peak, k * t.ref_psr)));
+    }
+    if (std::abs(gate - t.learn_gate) > 1e-3f) {
+      Params p = params;
+      p.learn_threshold = gate;
+      t.kcf.setParams(p);
+      t.learn_gate = gate;
+    }
+  }
+
+  static void updateRefs(Track& t, const KcfResult& r) {
+    if (t.ref_count == 0) {
+      t.ref_peak = r.peak;
+      t.ref_psr = r.psr;
+    } else {
+      const float a = t.ref_count < kRefWarmup ? 1.0f / static_cast<float>(t.ref_count + 1) : kRefSmoothing;
+      t.ref_peak += a * (r.peak - t.ref_peak);
+      t.ref_psr += a * (r.psr - t.ref_psr);
+    }
+    ++t.ref_count;
+  }
+
+  void step(Track& t, const cv::Mat& frame, double stamp) {
+    ++t.age;
+    if (t.state == TrackState::kTracking) {
+      setLearnGate(t);
+      KcfResult r = t.kcf.update(frame);
+      t.result = r;
+      if (r.peak >= goodPeak(t) && usableBox(r.box, frame_size)) {
+        updateRefs(t, r);
+        acceptGood(t, r.box, stamp, false);
+        return;
+      }
+      t.state = TrackState::kRedetecting;
+    }
+    // Re-detecting (also on the frame where the peak fell).
+    if (redetect(t, frame, stamp)) return;
+    ++t.failures;
+    t.box = predict(t, stamp);
+    t.result.confidence = std::min(t.result.confidence, static_cast<float>(params.learn_threshold));
+    t.result.model_updated = false;
+    if (t.failures > params.max_redetect_failures) {
+      t.state = TrackState::kLost;
+      t.result.confidence = 0.0f;
+    } else {
+      t.state = TrackState::kRedetecting;
+    }
+  }
+
+  bool overlapsTrack(const cv::Rect2f& b, float max_iou) const {
+    for (const auto& t : tracks) {
+      if (t->state == TrackState::kLost) continue;
+      if (iou(b, t->box) > max_iou || t->box.contains(centre(b)) || b.contains(centre(t->box))) return true;
+    }
+    return false;
+  }
+
+  int activeTracks() const {
+    int n = 0;
+    for (const auto& t : tracks) n += t->state != TrackState::kLost ? 1 : 0;
+    return n;
+  }
+
+  void mergeTracks() {
+    for (std::size_t i = 0; i < tracks.size(); ++i) {
+      for (std::size_t j = i + 1; j < tracks.size();) {
+        Track& a = *tracks[i];
+        Track& b = *tracks[j];
+        if (a.state != TrackState::kLost && b.state != TrackState::kLost &&
+            iou(a.box, b.box) > params.merge_iou) {
+          // Keep the one in the better state, then the older one.
+          const bool keep_a = stateRank(a.state) != stateRank(b.state) ? stateRank(a.state) < stateRank(b.state)
+                                                                       : a.age >= b.age;
+          const std::size_t drop = keep_a ? j : i;
+          pool.push_back(std::move(tracks[drop]));
+          tracks.erase(tracks.begin() + static_cast<long>(drop));
+          if (!keep_a) {
+            j = i + 1;  // tracks[i] is now another track: recheck from its successor
+            continue;
+          }
+        } else {
+          ++j;
+        }
+      }
+    }
+  }
+
+  void search(const cv::Mat& frame, double stamp) {
+    if (activeTracks() >= params.max_obstacles) {
+      if (!autoinit_fresh) {
+        autoinit.reset();
+        autoinit_fresh = true;
+      }
+      return;
+    }
+    if ((frame_index - 1) % params.detection_interval != 0) return;
+    autoinit_fresh = false;
+    const std::vector<SalientRegion>& found = autoinit.update(frame, stamp);
+    for (const auto& r : found) {
+      if (activeTracks() >= params.max_obstacles) break;
+      if (!usableBox(r.box, frame_size) || overlapsTrack(r.box, kSpawnMaxIou)) continue;
+      newTrack(frame, stamp, r.box);
+    }
+  }
+
+  void spawnSplits(const cv::Mat& frame, double stamp) {
+    for (const auto& b : spawn) {
+      if (activeTracks() >= params.max_obstacles) break;
+      if (!usableBox(b, frame_size) || overlapsTrack(b, kSpawnMaxIou)) continue;
+      newTrack(frame, stamp, b);
+    }
+    spawn.clear();
+  }
+
+  void report() {
+    std::stable_sort(tracks.begin(), tracks.end(), [](const std::unique_ptr<Track>& a, const std::unique_ptr<Track>& b) {
+      const int ra = stateRank(a->state), rb = stateRank(b->state);
+      if (ra != rb) return ra < rb;
+      return a->age > b->age;
+    });
+    out.clear();
+    for (const auto& t : tracks) {
+      Obstacle o;
+      o.id = t->id;
+      o.box = t->box;
+      o.confidence = std::min(1.0f, std::max(0.0f, t->result.confidence));
+      o.peak = t->result.peak;
+      o.psr = t->result.psr;
+      o.state = t->state;
+      o.expansion_rate = t->looming.expansionRate();
+      o.time_to_contact = t->looming.timeToContact();
+      o.age = t->age;
+      o.model_updated = t->result.model_updated;
+      out.push_back(o);
+    }
+  }
+
+  const std::vector<Obstacle>& run(const cv::Mat& frame, double stamp, const cv::Rect2f* start_box) {
+    spawn.clear();
+    for (auto& t : tracks) step(*t, frame, stamp);
+    if (start_box != nullptr) {
+      // Make room: the given box wins over the weakest track.
+      while (activeTracks() >= params.max_obstacles && !tracks.empty()) {
+        report();  // sorts best first
+        pool.push_back(std::move(tracks.back()));
+        tracks.pop_back();
+      }
+      newTrack(frame, stamp, *start_box);
+    }
+    spawnSplits(frame, stamp);
+    if (params.max_obstacles > 1) mergeTracks();
+    search(frame, stamp);
+    report();
+    return out;
+  }
+
+  static constexpr int kRefWarmup = 3;         // good frames before the relative tests apply
+  static constexpr float kRefSmoothing = 0.05f;  // EMA weight of the newest good frame
+  static constexpr float kMaxLearnGate = 0.9f;
+};
+
+Pipeline::Pipeline(const Params& params) : impl_(new Impl(params)) {}
+
+Pipeline::~Pipeline() { delete impl_; }
+
+void Pipeline::setParams(const Params& params) {
+  impl_->pending = params;
+  validate(impl_->pending);
+  impl_->have_pending = true;
+}
+
+const Params& Pipeline::params() const { return impl_->have_pending ? impl_->pending : impl_->params; }
+
+const std::vector<Obstacle>& Pipeline::process(const cv::Mat& frame, double stamp) {
+  impl_->beginFrame(frame, stamp, "Pipeline::process");
+  return impl_->run(frame, stamp, nullptr);
+}
+
+const std::vector<Obstacle>& Pipeline::startTrack(const cv::Mat& frame, double stamp, const cv::Rect2f& box) {
+  impl_->checkFrame(frame, "Pipeline::startTrack");
+  if (!usableBox(box, frame.size())) {
+    throw std::invalid_argument("Pipeline::startTrack: the box must be finite, at least 1x1 px and overlap the frame");
+  }
+  impl_->beginFrame(frame, stamp, "Pipeline::startTrack");
+  return impl_->run(frame, stamp, &box);
+}
+
+void Pipeline::reset() { impl_->resetAll(); }
+
+TrackState Pipeline::state() const {
+  const auto& out = impl_->out;
+  return out.empty() ? TrackState::kSearching : out.front().state;
+}
+
+}  // namespace core
+}  // namespace obstacle_tracker
