@@ -108,6 +108,10 @@ struct KcfTracker::Impl {
   cv::Mat corr_f, corr, k, kf, resp_f;
   std::vector<cv::Mat> resp;  // one response per scale
   cv::Mat new_alphaf;
+  // Features of the last tracking step at the tracked box, kept for learn().
+  bool cached_valid = false;
+  float cached_zz = 0.0f;
+
   // DSST scale filter (Danelljan et al., BMVC 2014): one column of fHOG features per scale.
   bool use_scale_filter = false;
   int scale_n = 1;                 // scales of the scale filter (S)
@@ -246,6 +250,7 @@ struct KcfTracker::Impl {
 
   // Features of the window -> zf (spectra), returns ||z||^2.
   float featuresSpectrum(const cv::Mat& frame, cv::Point2f c, cv::Size2f ws, cv::Mat& out_f) {
+    cached_valid = false;
     extractPatch(frame, c, ws);
     fhog.compute(patch, cell, feat);
     out_f.create(kChannels * rows, cols, CV_32FC2);
@@ -617,17 +622,18 @@ void KcfTracker::init(const cv::Mat& frame, const cv::Rect2f& box) {
   checkFrame(frame, "KcfTracker::init");
   checkBox(frame, box, "KcfTracker::init");
   impl_->initialized = false;
+  impl_->cached_valid = false;
   impl_->buildGeometry(frame, box);
   impl_->train(frame, 1.0f);
   if (impl_->use_scale_filter) impl_->buildScaleFilter(frame);
   impl_->initialized = true;
 }
 
-KcfResult KcfTracker::update(const cv::Mat& frame) {
-  checkImpl(impl_);
-  checkFrame(frame, "KcfTracker::update");
-  if (!impl_->initialized) throw std::logic_error("KcfTracker::update: not initialised");
-  Impl& m = *impl_;
+namespace {
+
+// One tracking step: detection over the searched scales, refinement, and (when allowed and the
+// confidence reaches learn_threshold) learning. Leaves the refined features in m.zf for learn().
+KcfResult trackStep(KcfTracker::Impl& m, const cv::Mat& frame, bool allow_learning) {
   const Params& p = m.params;
 
   // Detect at each scale; keep the best (non-unit scales slightly penalised).
@@ -692,7 +698,10 @@ KcfResult KcfTracker::update(const cv::Mat& frame) {
   }
   result.box = m.boxAt(m.center, m.target);
 
-  const bool learn = result.confidence >= p.learn_threshold && p.learning_rate > 0.0;
+  m.cached_zz = zz;
+  m.cached_valid = true;
+  const bool learn =
+      allow_learning && result.confidence >= p.learn_threshold && p.learning_rate > 0.0;
   if (learn) m.trainOnSpectrum(zz, static_cast<float>(p.learning_rate));
 
   // DSST scale filter at the new centre (only when the response is trusted).
@@ -710,6 +719,38 @@ KcfResult KcfTracker::update(const cv::Mat& frame) {
   }
   result.model_updated = learn;
   return result;
+}
+
+}  // namespace
+
+KcfResult KcfTracker::update(const cv::Mat& frame) {
+  checkImpl(impl_);
+  checkFrame(frame, "KcfTracker::update");
+  if (!impl_->initialized) throw std::logic_error("KcfTracker::update: not initialised");
+  return trackStep(*impl_, frame, true);
+}
+
+KcfResult KcfTracker::detect(const cv::Mat& frame) {
+  checkImpl(impl_);
+  checkFrame(frame, "KcfTracker::detect");
+  if (!impl_->initialized) throw std::logic_error("KcfTracker::detect: not initialised");
+  return trackStep(*impl_, frame, false);
+}
+
+void KcfTracker::learn(const cv::Mat& frame) {
+  checkImpl(impl_);
+  checkFrame(frame, "KcfTracker::learn");
+  if (!impl_->initialized) throw std::logic_error("KcfTracker::learn: not initialised");
+  Impl& m = *impl_;
+  const float eta = static_cast<float>(m.params.learning_rate);
+  if (eta <= 0.0f) return;
+  if (m.cached_valid) {
+    m.trainOnSpectrum(m.cached_zz, eta);
+  } else {
+    m.train(frame, eta);
+  }
+  m.cached_valid = false;
+  if (m.use_scale_filter) m.trainScale(frame, eta);
 }
 
 KcfResult KcfTracker::evaluate(const cv::Mat& frame, const cv::Rect2f& candidate) {

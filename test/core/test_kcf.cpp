@@ -215,6 +215,41 @@ TEST(Kcf, EvaluateDoesNotChangeStateAndRanksCandidates) {
   EXPECT_EQ(ra.peak, rb.peak);
 }
 
+TEST(Kcf, DetectThenLearnEqualsUpdate) {
+  const cv::Mat bg = makeTexture(160, 14);
+  const cv::Mat obj = makeTexture(64, 15);
+  const cv::Size fs(320, 240);
+  for (bool filter : {false, true}) {
+    oc::Params p;
+    p.kcf_scale_filter = filter;
+    oc::KcfTracker a(p), b(p), c(p);
+    const cv::Rect2f box(80, 80, 40, 40);
+    const cv::Mat f0 = renderFrame(bg, obj, fs, 100, 100, 40, CV_8UC3);
+    a.init(f0, box);
+    b.init(f0, box);
+    c.init(f0, box);
+    for (int i = 1; i <= 4; ++i) {
+      const cv::Mat f = renderFrame(bg, obj, fs, 100 + 2 * i, 100 - i, 40 + i, CV_8UC3);
+      const oc::KcfResult ra = a.update(f);
+      const oc::KcfResult rb = b.detect(f);
+      const oc::KcfResult rc = c.detect(f);  // never learns
+      ASSERT_TRUE(ra.model_updated);
+      EXPECT_FALSE(rb.model_updated);
+      EXPECT_FALSE(rc.model_updated);
+      b.learn(f);
+      EXPECT_EQ(ra.box, rb.box);
+      EXPECT_EQ(ra.peak, rb.peak);
+    }
+    const cv::Mat last = renderFrame(bg, obj, fs, 112, 94, 46, CV_8UC3);
+    const oc::KcfResult ra = a.update(last);
+    const oc::KcfResult rb = b.update(last);
+    const oc::KcfResult rc = c.update(last);
+    EXPECT_EQ(ra.box, rb.box) << "scale filter " << filter;
+    EXPECT_EQ(ra.peak, rb.peak);
+    EXPECT_NE(ra.peak, rc.peak);  // c's model is still the first frame's
+  }
+}
+
 TEST(Kcf, TinyTargetsAndBoxesPartlyOutsideTheFrame) {
   // A small bright drone-like blob over a low-contrast textured sky (as in the infrared clips).
   const cv::Mat bg = makeTexture(160, 9) / 4 + 60;

@@ -36,6 +36,8 @@ struct KcfResult {
 // throw std::logic_error. Parameters are clamped into their ranges (core::validate).
 class KcfTracker {
  public:
+  struct Impl;
+
   static constexpr float kConfidencePeakFull = 0.5f;
   static constexpr float kConfidencePsrZero = 4.0f;
   static constexpr float kConfidencePsrFull = 14.0f;
@@ -60,6 +62,13 @@ class KcfTracker {
   // re-detection candidate against the model).
   KcfResult evaluate(const cv::Mat& frame, const cv::Rect2f& candidate);
 
+  // For callers that gate learning themselves (e.g. against running means of peak and PSR):
+  // detect() is update() without learning (model_updated is false); learn() then trains on the
+  // tracked box of the same frame (reusing detect()'s features, so it costs no extra extraction
+  // when called right after detect()). learn() ignores learn_threshold.
+  KcfResult detect(const cv::Mat& frame);
+  void learn(const cv::Mat& frame);
+
   bool initialized() const;
   cv::Rect2f box() const;
 
@@ -71,7 +80,6 @@ class KcfTracker {
   cv::Size templateCells() const;
 
  private:
-  struct Impl;
   Impl* impl_;
 };
 
