@@ -71,7 +71,7 @@ namespace core {
     "drop auto-init candidates in rows of similar components (on-screen text)")                   \
   X(bool, auto_init_reject_static, true, false, true, "",                                          \
     "drop auto-init candidates whose pixels have not changed for 3 frames (overlays)")            \
-  X(bool, auto_init_shape_filter, false, false, true, "",                                           \
+  X(bool, auto_init_shape_filter, false, false, true, "",                                          \
     "drop auto-init tracks whose box is a thin line (aspect > 4.5: reticles, poles, markings)")
 
 // Kernelized correlation filter and scale.
