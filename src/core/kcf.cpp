@@ -32,6 +32,7 @@ constexpr float kMinTargetSide = 4.0f;    // scale search never shrinks a side b
 constexpr float kMaxPsr = 100.0f;
 constexpr float kScaleModelArea = 512.0f;  // DSST's scale model size (32 x 16 px)
 constexpr float kScaleLambda = 0.01f;      // DSST's regulariser
+constexpr float kScaleLearningRate = 0.025f;  // DSST's scale-model rate (learning_rate is for KCF)
 
 float clamp01(float v) { return std::min(1.0f, std::max(0.0f, v)); }
 
@@ -715,7 +716,7 @@ KcfResult trackStep(KcfTracker::Impl& m, const cv::Mat& frame, bool allow_learni
     m.window = cv::Size2f(m.window.width * f, m.window.height * f);
     result.scale_change = f;
     result.box = m.boxAt(m.center, m.target);
-    if (learn) m.trainScale(frame, static_cast<float>(p.learning_rate));
+    if (learn) m.trainScale(frame, kScaleLearningRate);
   }
   result.model_updated = learn;
   return result;
@@ -750,7 +751,7 @@ void KcfTracker::learn(const cv::Mat& frame) {
     m.train(frame, eta);
   }
   m.cached_valid = false;
-  if (m.use_scale_filter) m.trainScale(frame, eta);
+  if (m.use_scale_filter) m.trainScale(frame, kScaleLearningRate);
 }
 
 KcfResult KcfTracker::evaluate(const cv::Mat& frame, const cv::Rect2f& candidate) {

@@ -144,9 +144,10 @@ TEST_P(KcfScale, FollowsAGrowingPatternWithin5PercentScale) {
   const double est = std::sqrt(r.box.area()) / side0;
   EXPECT_NEAR(est, side / side0, 0.05 * side / side0) << "estimated scale " << est;
   EXPECT_LT(cv::norm(centre(r.box) - cv::Point2f(static_cast<float>(x), 120.0f)), 2.0);
-  // And shrinking back to 1.0 over 10 frames.
-  for (int i = 1; i <= 10; ++i) {
-    side = side0 * 1.15 * (1.0 - 0.013 * i);
+  // And shrinking back to 1.0 over 10 frames, then 3 frames at that size (the scale filter's
+  // model trails a fast shrink by a few frames).
+  for (int i = 1; i <= 13; ++i) {
+    side = side0 * 1.15 * (1.0 - 0.013 * std::min(i, 10));
     r = kcf.update(renderFrame(bg, obj, fs, x, 120, side, CV_8UC1));
   }
   const double est2 = std::sqrt(r.box.area()) / side0;
@@ -175,7 +176,8 @@ TEST(Kcf, FullOcclusionDropsConfidenceAndFreezesTheModel) {
   for (int i = 0; i < 5; ++i) {
     const oc::KcfResult r = kcf.update(occluded);
     EXPECT_LT(r.confidence, p.learn_threshold);
-    EXPECT_LT(r.peak, p.peak_threshold);
+    EXPECT_LT(r.peak, 0.5f * before.peak);
+    EXPECT_LT(r.psr, 8.0f);  // a flat response
     EXPECT_FALSE(r.model_updated);
   }
   // The model did not learn the occluder: on the visible target it answers as before.

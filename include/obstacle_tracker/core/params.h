@@ -20,7 +20,7 @@ namespace core {
 #define OT_LOOP_PARAMS(X)                                                                          \
   X(double, peak_threshold, 0.20, 0.0, 1.0, "",                                                    \
     "raw KCF response peak below which the track re-detects (the paper's test)")                  \
-  X(double, learn_threshold, 0.35, 0.0, 1.0, "",                                                   \
+  X(double, learn_threshold, 0.40, 0.0, 1.0, "",                                                   \
     "confidence below which the filter model is not updated (keeps occluders out)")               \
   X(double, search_window_scale, 3.0, 1.0, 20.0, "x box",                                          \
     "side of the re-detection window as a multiple of the last box side")                         \
@@ -76,7 +76,7 @@ namespace core {
 
 // Kernelized correlation filter and scale.
 #define OT_TRACKER_PARAMS(X)                                                                       \
-  X(double, learning_rate, 0.02, 0.0, 1.0, "", "model interpolation factor per frame (eta)")       \
+  X(double, learning_rate, 0.01, 0.0, 1.0, "", "model interpolation factor per frame (eta)")       \
   X(double, kcf_padding, 1.5, 0.0, 5.0, "x box", "context around the box in the filter window")    \
   X(int, kcf_template_size, 96, 32, 256, "px", "longer side of the resized filter window")         \
   X(int, kcf_cell_size, 4, 1, 8, "px", "HOG cell size")                                            \
@@ -86,7 +86,7 @@ namespace core {
     "label Gaussian sigma as a fraction of the target size")                                      \
   X(int, scale_count, 3, 1, 33, "", "scales searched per frame (1 = no scale estimation)")         \
   X(double, scale_step, 1.05, 1.0, 1.5, "", "ratio between neighbouring scales")                 \
-  X(double, scale_penalty, 0.98, 0.5, 1.0, "",                                                     \
+  X(double, scale_penalty, 0.95, 0.5, 1.0, "",                                                     \
     "factor on the response peak of non-unit scales (favours keeping the size)")                  \
   X(double, kcf_min_window, 16.0, 0.0, 1024.0, "px",                                               \
     "smallest side of the filter window in frame pixels (context for tiny targets)")              \
