@@ -17,12 +17,17 @@ namespace obstacle_tracker {
 namespace core {
 namespace {
 
+// The distance is not stored: a pixel's D is always U - L of its current path. Unreached pixels
+// start with U = 255, L = 0 (D = 255, "infinite"): a path through them has barrier 255 and never
+// improves anything, and their own first relaxation replaces U and L. One array less to load and
+// store per pixel and pass.
+
 // Relaxes pixels [0, n) of one row against the row `nb` (the row above in a forward pass, below in
 // a backward pass). Independent across the row: OpenCV's universal intrinsics (16/32/64 bytes at
 // a time, whatever the build's SIMD), then a scalar tail.
 inline std::uint8_t relaxRow(const std::uint8_t* __restrict img, const std::uint8_t* __restrict nb_u,
-                             const std::uint8_t* __restrict nb_l, std::uint8_t* __restrict d,
-                             std::uint8_t* __restrict u, std::uint8_t* __restrict l, int n) {
+                             const std::uint8_t* __restrict nb_l, std::uint8_t* __restrict u,
+                             std::uint8_t* __restrict l, int n) {
   int j = 0;
   std::uint8_t changed = 0;
 #if CV_SIMD
@@ -32,12 +37,10 @@ inline std::uint8_t relaxRow(const std::uint8_t* __restrict img, const std::uint
     const cv::v_uint8 v = cv::vx_load(img + j);
     const cv::v_uint8 cu = cv::v_max(cv::vx_load(nb_u + j), v);
     const cv::v_uint8 cl = cv::v_min(cv::vx_load(nb_l + j), v);
-    const cv::v_uint8 b = cu - cl;  // cu >= cl: no saturation
-    const cv::v_uint8 od = cv::vx_load(d + j);
-    const cv::v_uint8 m = b < od;
-    cv::v_store(d + j, cv::v_select(m, b, od));
-    cv::v_store(u + j, cv::v_select(m, cu, cv::vx_load(u + j)));
-    cv::v_store(l + j, cv::v_select(m, cl, cv::vx_load(l + j)));
+    const cv::v_uint8 ou = cv::vx_load(u + j), ol = cv::vx_load(l + j);
+    const cv::v_uint8 m = (cu - cl) < (ou - ol);  // U >= L everywhere: no saturation
+    cv::v_store(u + j, cv::v_select(m, cu, ou));
+    cv::v_store(l + j, cv::v_select(m, cl, ol));
     any |= m;
   }
   changed = cv::v_check_any(any) ? 1 : 0;
@@ -45,9 +48,7 @@ inline std::uint8_t relaxRow(const std::uint8_t* __restrict img, const std::uint
   for (; j < n; ++j) {
     const std::uint8_t cu = std::max(nb_u[j], img[j]);
     const std::uint8_t cl = std::min(nb_l[j], img[j]);
-    const std::uint8_t b = static_cast<std::uint8_t>(cu - cl);
-    if (b < d[j]) {
-      d[j] = b;
+    if (cu - cl < u[j] - l[j]) {
       u[j] = cu;
       l[j] = cl;
       changed = 1;
@@ -61,8 +62,8 @@ inline std::uint8_t relaxRow(const std::uint8_t* __restrict img, const std::uint
 // in registers and the update is a conditional move, not a branch (the comparison is data
 // dependent and mispredicts on real images).
 template <int CN, bool kForward>
-inline std::uint8_t sweepRow(const std::uint8_t* img, std::uint8_t* d, std::uint8_t* u, std::uint8_t* l,
-                             int cols) {
+inline std::uint8_t sweepRow(const std::uint8_t* __restrict img, std::uint8_t* __restrict u,
+                             std::uint8_t* __restrict l, int cols) {
   unsigned changed = 0;
   unsigned pu[CN], pl[CN];
   const int first = kForward ? 1 : cols - 2;
@@ -77,12 +78,10 @@ inline std::uint8_t sweepRow(const std::uint8_t* img, std::uint8_t* d, std::uint
       const unsigned v = img[j];
       const unsigned cu = pu[k] > v ? pu[k] : v;
       const unsigned cl = pl[k] < v ? pl[k] : v;
-      const unsigned b = cu - cl;
-      const unsigned old = d[j];
-      const bool better = b < old;
-      const unsigned nu = better ? cu : u[j];
-      const unsigned nl = better ? cl : l[j];
-      d[j] = static_cast<std::uint8_t>(better ? b : old);
+      const unsigned ou = u[j], ol = l[j];
+      const bool better = cu - cl < ou - ol;
+      const unsigned nu = better ? cu : ou;
+      const unsigned nl = better ? cl : ol;
       u[j] = static_cast<std::uint8_t>(nu);
       l[j] = static_cast<std::uint8_t>(nl);
       pu[k] = nu;
@@ -98,32 +97,34 @@ int fastMbdImpl(const cv::Mat& image, int passes, cv::Mat& dist, cv::Mat& upper,
   const int rows = image.rows, cols = image.cols;
   image.copyTo(upper);
   image.copyTo(lower);
-  dist.setTo(cv::Scalar::all(0));
-  if (rows < 3 || cols < 3) return 0;  // every pixel is a seed
-  for (int r = 1; r < rows - 1; ++r) {
-    std::uint8_t* d = dist.ptr<std::uint8_t>(r);
-    std::fill(d + CN, d + (cols - 1) * CN, std::uint8_t(255));
-  }
-  // Interior bytes of a row: columns 1 .. cols-2.
-  const int n = (cols - 2) * CN;
-  int run = 0;
-  for (int p = 0; p < passes; ++p) {
-    const bool forward = (p % 2) == 0;
-    std::uint8_t changed = 0;
-    for (int i = 1; i < rows - 1; ++i) {
-      const int r = forward ? i : rows - 1 - i;
-      const int rn = forward ? r - 1 : r + 1;
-      const std::uint8_t* img = image.ptr<std::uint8_t>(r);
-      std::uint8_t* d = dist.ptr<std::uint8_t>(r);
-      std::uint8_t* u = upper.ptr<std::uint8_t>(r);
-      std::uint8_t* l = lower.ptr<std::uint8_t>(r);
-      changed |= relaxRow(img + CN, upper.ptr<std::uint8_t>(rn) + CN, lower.ptr<std::uint8_t>(rn) + CN,
-                          d + CN, u + CN, l + CN, n);
-      changed |= forward ? sweepRow<CN, true>(img, d, u, l, cols) : sweepRow<CN, false>(img, d, u, l, cols);
+  if (rows >= 3 && cols >= 3) {
+    for (int r = 1; r < rows - 1; ++r) {
+      std::fill(upper.ptr<std::uint8_t>(r) + CN, upper.ptr<std::uint8_t>(r) + (cols - 1) * CN, std::uint8_t(255));
+      std::fill(lower.ptr<std::uint8_t>(r) + CN, lower.ptr<std::uint8_t>(r) + (cols - 1) * CN, std::uint8_t(0));
     }
-    ++run;
-    if (!changed && p > 0) break;  // stable under both scan orders: converged
   }
+  int run = 0;
+  if (rows >= 3 && cols >= 3) {  // otherwise every pixel is a seed
+    // Interior bytes of a row: columns 1 .. cols-2.
+    const int n = (cols - 2) * CN;
+    for (int p = 0; p < passes; ++p) {
+      const bool forward = (p % 2) == 0;
+      std::uint8_t changed = 0;
+      for (int i = 1; i < rows - 1; ++i) {
+        const int r = forward ? i : rows - 1 - i;
+        const int rn = forward ? r - 1 : r + 1;
+        const std::uint8_t* img = image.ptr<std::uint8_t>(r);
+        std::uint8_t* u = upper.ptr<std::uint8_t>(r);
+        std::uint8_t* l = lower.ptr<std::uint8_t>(r);
+        changed |= relaxRow(img + CN, upper.ptr<std::uint8_t>(rn) + CN, lower.ptr<std::uint8_t>(rn) + CN, u + CN,
+                            l + CN, n);
+        changed |= forward ? sweepRow<CN, true>(img, u, l, cols) : sweepRow<CN, false>(img, u, l, cols);
+      }
+      ++run;
+      if (!changed && p > 0) break;  // stable under both scan orders: converged
+    }
+  }
+  cv::subtract(upper, lower, dist);  // D = U - L (0 on the seeds)
   return run;
 }
 
