@@ -163,6 +163,7 @@ RunResult runTracker(const std::string& path, const std::string& tracker_name,
   bool started = false;
   res.boxes.reserve(n - start_frame);
   res.confidence.reserve(n - start_frame);
+  res.frame_ms.reserve(n - start_frame);
   res.gt.reserve(n - start_frame);
   for (int i = start_frame; seq.read(raw); ++i) {
     if (progress) progress->fetch_add(1, std::memory_order_relaxed);
@@ -177,7 +178,9 @@ RunResult runTracker(const std::string& path, const std::string& tracker_name,
           if (!tracker->needsInitBox()) {
             const auto t0 = Clock::now();
             rep = tracker->start(frame, stamp, cv::Rect2f());
-            res.update_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+            const double sec = std::chrono::duration<double>(Clock::now() - t0).count();
+            res.update_seconds += sec;
+            res.frame_ms.push_back(static_cast<float>(1e3 * sec));
             ++res.timed_frames;
             started = true;
           } else if (!isAbsent(gt)) {
@@ -187,7 +190,9 @@ RunResult runTracker(const std::string& path, const std::string& tracker_name,
         } else {
           const auto t0 = Clock::now();
           rep = tracker->update(frame, stamp);
-          res.update_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+          const double sec = std::chrono::duration<double>(Clock::now() - t0).count();
+          res.update_seconds += sec;
+          res.frame_ms.push_back(static_cast<float>(1e3 * sec));
           ++res.timed_frames;
         }
       } catch (const std::exception& e) {

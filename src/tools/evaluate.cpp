@@ -128,6 +128,14 @@ std::string fmtFps(double v) {
   return fmt(v, v >= 100.0 ? 0 : 1);
 }
 
+double percentileOf(std::vector<float> v, double q) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const double k = (v.size() - 1) * q / 100.0;
+  const size_t lo = static_cast<size_t>(std::floor(k)), hi = static_cast<size_t>(std::ceil(k));
+  return v[lo] + (v[hi] - v[lo]) * (k - lo);
+}
+
 double geometricMean(const std::vector<double>& v) {
   double s = 0.0;
   int n = 0;
@@ -145,6 +153,7 @@ struct Cell {  // one (sequence, tracker)
   ev::OtbScores ope, tre;
   bool has_tre = false;
   double fps = 0.0;
+  double ms_p99 = 0.0, ms_max = 0.0;  // per-frame time of the tracker's call
   bool has_lt = false;
   ev::LongTermScores lt;
   std::string error;
@@ -388,6 +397,8 @@ int main(int argc, char** argv) {
     c.done = true;
     c.ope = ev::otbScores(fe);
     c.fps = r.fps();
+    c.ms_p99 = percentileOf(r.frame_ms, 99.0);
+    c.ms_max = percentileOf(r.frame_ms, 100.0);
     if (seqs[task.seq].absent_frames > 0) {
       c.has_lt = true;
       c.lt = ev::longTermScores(r.boxes, r.confidence, r.gt);
@@ -469,12 +480,12 @@ int main(int argc, char** argv) {
   {
     std::ofstream f(fs::path(out) / "results.csv");
     f << "sequence,tracker,mode,frames,gt_frames,precision20,auc,mean_centre_error,lost_fraction,fps,"
-         "lt_precision,lt_recall,lt_fscore,lt_threshold\n";
+         "lt_precision,lt_recall,lt_fscore,lt_threshold,frame_ms_p99,frame_ms_max\n";
     auto row = [&](const std::string& seq, const std::string& trk, const std::string& mode, int frames,
-                   const ev::OtbScores& sc, double fps, const std::string& lt) {
+                   const ev::OtbScores& sc, double fps, const std::string& lt, const std::string& ms) {
       f << seq << "," << trk << "," << mode << "," << frames << "," << sc.frames << "," << fmt(sc.precision20, 4)
         << "," << fmt(sc.auc, 4) << "," << fmt(sc.mean_centre_error, 2) << "," << fmt(sc.lost_fraction, 4) << ","
-        << fmt(fps, 1) << "," << lt << "\n";
+        << fmt(fps, 1) << "," << lt << "," << ms << "\n";
     };
     for (size_t s = 0; s < S; ++s) {
       for (size_t t = 0; t < T; ++t) {
@@ -483,10 +494,11 @@ int main(int argc, char** argv) {
         const std::string lt = c.has_lt ? fmt(c.lt.precision, 4) + "," + fmt(c.lt.recall, 4) + "," +
                                               fmt(c.lt.fscore, 4) + "," + fmt(c.lt.threshold, 4)
                                         : ",,,";
-        row(seqs[s].name, trackers[t], "OPE", seqs[s].frames, c.ope, c.fps, lt);
+        row(seqs[s].name, trackers[t], "OPE", seqs[s].frames, c.ope, c.fps, lt,
+            fmt(c.ms_p99, 2) + "," + fmt(c.ms_max, 2));
         if (c.has_tre) {
           const double fps = tre_secs[s][t] > 0 ? tre_frames[s][t] / tre_secs[s][t] : 0.0;
-          row(seqs[s].name, trackers[t], "TRE", seqs[s].frames, c.tre, fps, ",,,");
+          row(seqs[s].name, trackers[t], "TRE", seqs[s].frames, c.tre, fps, ",,,", ",");
         }
       }
     }
@@ -495,8 +507,8 @@ int main(int argc, char** argv) {
         const Summary& m = summary[u][t];
         const std::string lt = m.lt_n > 0 ? fmt(m.lt_p, 4) + "," + fmt(m.lt_r, 4) + "," + fmt(m.lt_f, 4) + ","
                                           : ",,,";
-        row("mean:" + subsets[u].name, trackers[t], "OPE", 0, m.ope, m.fps, lt);
-        if (tre) row("mean:" + subsets[u].name, trackers[t], "TRE", 0, m.tre, m.fps, ",,,");
+        row("mean:" + subsets[u].name, trackers[t], "OPE", 0, m.ope, m.fps, lt, ",");
+        if (tre) row("mean:" + subsets[u].name, trackers[t], "TRE", 0, m.tre, m.fps, ",,,", ",");
       }
     }
   }
@@ -587,14 +599,15 @@ int main(int argc, char** argv) {
       }
       md << "\n";
     }
-    md << "\n## Per sequence (OPE): fps\n\n| sequence |";
+    md << "\n## Per sequence (OPE): fps (slowest frame, ms)\n\n| sequence |";
     for (const auto& t : trackers) md << " " << t << " |";
     md << "\n|---|";
     for (size_t t = 0; t < T; ++t) md << "---|";
     md << "\n";
     for (size_t s = 0; s < S; ++s) {
       md << "| " << seqs[s].name << " |";
-      for (size_t t = 0; t < T; ++t) md << " " << fmtFps(cells[s][t].fps) << " |";
+      for (size_t t = 0; t < T; ++t)
+        md << " " << fmtFps(cells[s][t].fps) << " (" << fmt(cells[s][t].ms_max, 1) << ") |";
       md << "\n";
     }
     md << "\n";

@@ -55,6 +55,7 @@ struct RunResult {
   std::vector<cv::Rect2f> gt;       // the ground truth of those frames (absent past its end)
   double update_seconds = 0.0;      // time spent in start() for ours-auto, update() for all
   int timed_frames = 0;             // frames counted in update_seconds
+  std::vector<float> frame_ms;      // each timed call, milliseconds (for percentiles and spikes)
   std::string error;                // non-empty when the run had to stop (message)
   double fps() const { return update_seconds > 0.0 ? timed_frames / update_seconds : 0.0; }
 };

@@ -1,0 +1,73 @@
+# Accuracy rostests driven by rosbags (issue 5), catkin mode only; included at the end of
+# cmake/ros.cmake. At build time (`tests` target):
+#   - generate_scene renders a flight scene and scripts/sequence_to_bag.py turns it into
+#     accuracy/scene.bag (images + camera_info + /ground_truth);
+#   - when ../shared/sequences/${OT_ACCURACY_SEQUENCE} exists, the same converter makes
+#     accuracy/real.bag from it (the bag stays in the build folder; nothing is copied into the
+#     package).
+# test/ros/accuracy/accuracy_scene.test and accuracy_real.test play them through the real nodelet
+# in a manager; accuracy_node asserts one output per image with its stamp, OTB precision/success
+# bars, the output rate and the latency. Without the shared folder the real test is registered
+# anyway and reports that it is skipped and why. Both run serially (rate and latency bars).
+if(NOT CATKIN_ENABLE_TESTING)
+  return()
+endif()
+
+set(OT_ACCURACY_DIR ${CMAKE_CURRENT_BINARY_DIR}/accuracy)
+set(OT_ACCURACY_SCENE "crossing" CACHE STRING "generate_scene scenario of the accuracy rostest")
+set(OT_ACCURACY_SEQUENCE "antiuav_ir_35" CACHE STRING "shared sequence replayed by the real accuracy rostest")
+set(OT_ACCURACY_SEQUENCE_FRAMES 300 CACHE STRING "frames of the shared sequence put in the bag")
+# Bars (OTB precision at 20 px / success AUC of the nodelet's best obstacle, auto-initialised).
+set(OT_ACCURACY_SCENE_BARS min_precision20:=0.8 min_auc:=0.45)
+set(OT_ACCURACY_REAL_BARS min_precision20:=0.7 min_auc:=0.35)
+
+set(OT_ACCURACY_PYTHONPATH ${CATKIN_DEVEL_PREFIX}/${CATKIN_GLOBAL_PYTHON_DESTINATION})
+set(OT_TO_BAG ${PROJECT_SOURCE_DIR}/scripts/sequence_to_bag.py)
+set(OT_TO_BAG_DEPS ${OT_TO_BAG} ${PROJECT_SOURCE_DIR}/scripts/otb_metrics.py
+  ${PROJECT_NAME}_generate_messages_py)
+
+add_custom_command(OUTPUT ${OT_ACCURACY_DIR}/scene.bag
+  COMMAND ${CMAKE_COMMAND} -E remove_directory ${OT_ACCURACY_DIR}/scene
+  COMMAND $<TARGET_FILE:generate_scene> --scenario ${OT_ACCURACY_SCENE} --seed 5 --frames 150
+          --size 640x480 --quiet --out ${OT_ACCURACY_DIR}/scene
+  COMMAND ${CMAKE_COMMAND} -E env PYTHONPATH=${OT_ACCURACY_PYTHONPATH}
+          /usr/bin/python3 ${OT_TO_BAG} ${OT_ACCURACY_DIR}/scene ${OT_ACCURACY_DIR}/scene.bag
+          --frame-id camera_optical --quiet
+  DEPENDS generate_scene ${OT_TO_BAG_DEPS}
+  COMMENT "accuracy rostest: scene ${OT_ACCURACY_SCENE} -> accuracy/scene.bag"
+  VERBATIM)
+set(OT_ACCURACY_BAGS ${OT_ACCURACY_DIR}/scene.bag)
+
+set(OT_ACCURACY_SHARED ${PROJECT_SOURCE_DIR}/../shared/sequences/${OT_ACCURACY_SEQUENCE})
+if(EXISTS ${OT_ACCURACY_SHARED}/groundtruth_rect.txt)
+  add_custom_command(OUTPUT ${OT_ACCURACY_DIR}/real.bag
+    COMMAND ${CMAKE_COMMAND} -E env PYTHONPATH=${OT_ACCURACY_PYTHONPATH}
+            /usr/bin/python3 ${OT_TO_BAG} ${OT_ACCURACY_SHARED} ${OT_ACCURACY_DIR}/real.bag
+            --frame-id camera_optical --encoding mono8 --max-frames ${OT_ACCURACY_SEQUENCE_FRAMES} --quiet
+    DEPENDS ${OT_TO_BAG_DEPS} ${OT_ACCURACY_SHARED}/groundtruth_rect.txt
+    COMMENT "accuracy rostest: ${OT_ACCURACY_SEQUENCE} -> accuracy/real.bag"
+    VERBATIM)
+  list(APPEND OT_ACCURACY_BAGS ${OT_ACCURACY_DIR}/real.bag)
+  set(OT_ACCURACY_REAL_ARGS bag:=${OT_ACCURACY_DIR}/real.bag name:=${OT_ACCURACY_SEQUENCE} ${OT_ACCURACY_REAL_BARS})
+else()
+  set(OT_ACCURACY_REAL_ARGS name:=${OT_ACCURACY_SEQUENCE} missing:=${OT_ACCURACY_SHARED})
+endif()
+add_custom_target(accuracy_bags DEPENDS ${OT_ACCURACY_BAGS})
+add_dependencies(tests accuracy_bags)
+
+catkin_add_executable_with_gtest(accuracy_node test/ros/accuracy/accuracy_node.cpp EXCLUDE_FROM_ALL)
+target_link_libraries(accuracy_node obstacle_tracker_nodelet ${OT_LIBS} ${catkin_LIBRARIES})
+set_target_properties(accuracy_node PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${OT_ROS_BIN_DIR})
+add_dependencies(accuracy_node ${PROJECT_NAME}_generate_messages_cpp)
+add_dependencies(tests accuracy_node)
+
+add_rostest(test/ros/accuracy/accuracy_scene.test ARGS bag:=${OT_ACCURACY_DIR}/scene.bag ${OT_ACCURACY_SCENE_BARS}
+  DEPENDENCIES obstacle_tracker_nodelet accuracy_node accuracy_bags)
+add_rostest(test/ros/accuracy/accuracy_real.test ARGS ${OT_ACCURACY_REAL_ARGS}
+  DEPENDENCIES obstacle_tracker_nodelet accuracy_node accuracy_bags)
+foreach(name accuracy_scene accuracy_real)
+  set(ctest_name _ctest_${PROJECT_NAME}_rostest_test_ros_accuracy_${name}.test)
+  if(TEST ${ctest_name})
+    set_tests_properties(${ctest_name} PROPERTIES RUN_SERIAL TRUE)
+  endif()
+endforeach()
