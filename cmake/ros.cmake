@@ -5,6 +5,11 @@
 set(OT_ROS_BIN_DIR ${CATKIN_DEVEL_PREFIX}/${CATKIN_PACKAGE_BIN_DESTINATION})
 set(OT_GENERATED_INCLUDE_DIR ${CATKIN_DEVEL_PREFIX}/${CATKIN_GLOBAL_INCLUDE_DESTINATION})
 
+# config/ObstacleTracker.cfg reads its parameter list from params.h: regenerate the config header
+# (and the Python module) when params.h changes, not only when the .cfg does.
+add_custom_command(OUTPUT ${CATKIN_DEVEL_PREFIX}/${CATKIN_PACKAGE_INCLUDE_DESTINATION}/ObstacleTrackerConfig.h
+  APPEND DEPENDS ${PROJECT_SOURCE_DIR}/include/obstacle_tracker/core/params.h)
+
 # The nodelet and the conversions between core types and messages: src/ros/*.cpp.
 file(GLOB OT_ROS_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/ros/*.cpp)
 add_library(obstacle_tracker_nodelet ${OT_ROS_SOURCES})
@@ -84,3 +89,5 @@ if(CATKIN_ENABLE_TESTING)
     add_rostest(${rel} DEPENDENCIES obstacle_tracker_nodelet ${OT_NODES} ${OT_ROSTEST_DEPS})
   endforeach()
 endif()
+include(cmake/ros_accuracy.cmake OPTIONAL)
+include(cmake/ros_reliability.cmake OPTIONAL)
