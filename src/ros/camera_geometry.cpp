@@ -45,7 +45,7 @@ bool CameraGeometry::setCameraInfo(const sensor_msgs::CameraInfo& info, std::str
   }
   model_ = model;
   K_ = cv::Matx33d(fx, info.K[1], cx, info.K[3], fy, cy, 0.0, 0.0, 1.0);
-  D_ = cv::Mat(info.D, true).reshape(1, 1);
+  D_ = info.D.empty() ? cv::Mat() : cv::Mat(info.D, true).reshape(1, 1);
   binning_x_ = info.binning_x > 1 ? info.binning_x : 1.0;
   binning_y_ = info.binning_y > 1 ? info.binning_y : 1.0;
   roi_x_ = info.roi.x_offset;

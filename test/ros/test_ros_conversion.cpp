@@ -1,0 +1,342 @@
+// Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
+//
+// Known-answer tests of the ROS adapter's pure functions (no master needed): image encodings to
+// the core's CV_8UC1 / CV_8UC3, the 16-bit stretch, Bayer patterns, malformed messages, camera
+// geometry, parameters <-> dynamic_reconfigure, obstacle messages.
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
+
+#include "obstacle_tracker/ros/camera_geometry.h"
+#include "obstacle_tracker/ros/conversions.h"
+#include "obstacle_tracker/ros/image_conversion.h"
+#include "obstacle_tracker/ros/overlay.h"
+#include "synthetic_frames.h"
+
+using obstacle_tracker::bridge::CameraGeometry;
+using obstacle_tracker::bridge::FrameConverter;
+using obstacle_tracker::bridge::MalformedImage;
+using obstacle_tracker::bridge::PercentileStretch;
+using obstacle_tracker::bridge::UnsupportedEncoding;
+namespace core = obstacle_tracker::core;
+
+namespace {
+
+sensor_msgs::Image wrap(const cv::Mat& m, const std::string& encoding, bool big_endian = false) {
+  sensor_msgs::Image msg;
+  msg.height = m.rows;
+  msg.width = m.cols;
+  msg.encoding = encoding;
+  msg.is_bigendian = big_endian;
+  msg.step = static_cast<std::uint32_t>(m.cols * m.elemSize());
+  msg.data.resize(static_cast<std::size_t>(msg.step) * m.rows);
+  for (int r = 0; r < m.rows; ++r) std::memcpy(&msg.data[r * msg.step], m.ptr(r), msg.step);
+  if (big_endian && m.depth() == CV_16U) {
+    for (std::size_t i = 0; i + 1 < msg.data.size(); i += 2) std::swap(msg.data[i], msg.data[i + 1]);
+  }
+  return msg;
+}
+
+double maxAbsDiff(const cv::Mat& a, const cv::Mat& b) { return cv::norm(a, b, cv::NORM_INF); }
+
+}  // namespace
+
+TEST(ImageConversion, EightBitEncodingsGiveTheSameBgrFrame) {
+  const cv::Mat bgr = obstacle_tracker::testing::skyFrame(3, 64, 48);
+  FrameConverter conv;
+  cv::Mat rgb, bgra, rgba, grey;
+  cv::cvtColor(bgr, rgb, cv::COLOR_BGR2RGB);
+  cv::cvtColor(bgr, bgra, cv::COLOR_BGR2BGRA);
+  cv::cvtColor(bgr, rgba, cv::COLOR_BGR2RGBA);
+  cv::cvtColor(bgr, grey, cv::COLOR_BGR2GRAY);
+  const std::vector<std::pair<const cv::Mat*, const char*>> cases = {
+      {&bgr, "bgr8"}, {&bgr, "8UC3"}, {&rgb, "rgb8"}, {&bgra, "bgra8"}, {&bgra, "8UC4"}, {&rgba, "rgba8"}};
+  for (const auto& c : cases) {
+    const cv::Mat& out = conv.convert(wrap(*c.first, c.second));
+    ASSERT_EQ(out.type(), CV_8UC3) << c.second;
+    EXPECT_EQ(maxAbsDiff(out, bgr), 0.0) << c.second;
+  }
+  for (const char* enc : {"mono8", "8UC1"}) {
+    const cv::Mat& out = conv.convert(wrap(grey, enc));
+    ASSERT_EQ(out.type(), CV_8UC1) << enc;
+    EXPECT_EQ(maxAbsDiff(out, grey), 0.0) << enc;
+  }
+}
+
+TEST(ImageConversion, ResultDoesNotAliasTheMessage) {
+  const cv::Mat bgr = obstacle_tracker::testing::skyFrame(0, 32, 24);
+  FrameConverter conv;
+  sensor_msgs::Image msg = wrap(bgr, "bgr8");
+  const cv::Mat& out = conv.convert(msg);
+  const cv::Mat copy = out.clone();
+  std::fill(msg.data.begin(), msg.data.end(), 0);
+  EXPECT_EQ(maxAbsDiff(out, copy), 0.0);
+}
+
+TEST(ImageConversion, RowPaddingIsHonoured) {
+  const cv::Mat grey = (cv::Mat_<uchar>(2, 3) << 1, 2, 3, 4, 5, 6);
+  sensor_msgs::Image msg;
+  msg.width = 3;
+  msg.height = 2;
+  msg.encoding = "mono8";
+  msg.step = 8;  // 5 bytes of padding per row
+  msg.data = {1, 2, 3, 99, 99, 99, 99, 99, 4, 5, 6, 99, 99, 99, 99, 99};
+  FrameConverter conv;
+  EXPECT_EQ(maxAbsDiff(conv.convert(msg), grey), 0.0);
+}
+
+TEST(ImageConversion, Mono16IsStretchedBetweenPercentiles) {
+  // Thermal-like: 1000..1255 counts in a ramp; percentiles 0 and 100 map it exactly onto 0..255.
+  cv::Mat m16(16, 16, CV_16UC1);
+  for (int i = 0; i < 256; ++i) m16.at<std::uint16_t>(i / 16, i % 16) = static_cast<std::uint16_t>(1000 + i);
+  FrameConverter conv;
+  conv.stretch().setPercentiles(0.0, 100.0);
+  for (bool big_endian : {false, true}) {
+    for (const char* enc : {"mono16", "16UC1"}) {
+      const cv::Mat& out = conv.convert(wrap(m16, enc, big_endian));
+      ASSERT_EQ(out.type(), CV_8UC1);
+      EXPECT_EQ(conv.stretch().lastLow(), 1000);
+      EXPECT_EQ(conv.stretch().lastHigh(), 1255);
+      for (int i = 0; i < 256; ++i) EXPECT_EQ(out.at<uchar>(i / 16, i % 16), i) << enc << " big " << big_endian;
+    }
+  }
+}
+
+TEST(ImageConversion, PercentileStretchIgnoresHotPixels) {
+  cv::Mat m16(100, 100, CV_16UC1, cv::Scalar(3000));
+  m16(cv::Rect(0, 0, 100, 50)).setTo(3100);
+  m16.at<std::uint16_t>(7, 7) = 65535;  // hot pixel
+  m16.at<std::uint16_t>(8, 8) = 0;      // dead pixel
+  PercentileStretch stretch(1.0, 99.0);
+  cv::Mat out;
+  stretch.apply(m16, out);
+  EXPECT_EQ(stretch.lastLow(), 3000);
+  EXPECT_EQ(stretch.lastHigh(), 3100);
+  EXPECT_EQ(out.at<uchar>(10, 10), 255);
+  EXPECT_EQ(out.at<uchar>(90, 90), 0);
+  // A flat image does not divide by zero.
+  cv::Mat flat(10, 10, CV_16UC1, cv::Scalar(500));
+  stretch.apply(flat, out);
+  EXPECT_EQ(out.at<uchar>(5, 5), 0);
+  EXPECT_THROW(stretch.setPercentiles(50.0, 10.0), std::invalid_argument);
+}
+
+TEST(ImageConversion, BayerPatternsDemosaicToTheRightColour) {
+  // A uniform colour mosaicked with each ROS pattern must come back as that colour.
+  const cv::Vec3b bgr(30, 120, 220);  // B, G, R
+  struct Case { const char* encoding; char tl, tr, bl, br; };
+  const Case cases[] = {{"bayer_rggb8", 'R', 'G', 'G', 'B'}, {"bayer_bggr8", 'B', 'G', 'G', 'R'},
+                        {"bayer_gbrg8", 'G', 'B', 'R', 'G'}, {"bayer_grbg8", 'G', 'R', 'B', 'G'}};
+  auto value = [&](char c) { return c == 'B' ? bgr[0] : c == 'G' ? bgr[1] : bgr[2]; };
+  FrameConverter conv;
+  for (const Case& c : cases) {
+    cv::Mat mosaic(32, 32, CV_8UC1);
+    for (int r = 0; r < 32; ++r) {
+      for (int col = 0; col < 32; ++col) {
+        const char which = r % 2 == 0 ? (col % 2 == 0 ? c.tl : c.tr) : (col % 2 == 0 ? c.bl : c.br);
+        mosaic.at<uchar>(r, col) = value(which);
+      }
+    }
+    const cv::Mat& out = conv.convert(wrap(mosaic, c.encoding));
+    ASSERT_EQ(out.type(), CV_8UC3);
+    const cv::Vec3b centre = out.at<cv::Vec3b>(16, 16);
+    for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(centre[ch], bgr[ch], 2) << c.encoding << " channel " << ch;
+  }
+  // 16-bit Bayer: demosaiced, then stretched to 8 bits.
+  cv::Mat mosaic16(32, 32, CV_16UC1);
+  cv::randu(mosaic16, 0, 4096);
+  const cv::Mat& out16 = conv.convert(wrap(mosaic16, "bayer_rggb16"));
+  EXPECT_EQ(out16.type(), CV_8UC3);
+}
+
+TEST(ImageConversion, Yuv422AndSixteenBitColour) {
+  cv::Mat uyvy(8, 8, CV_8UC2, cv::Scalar(128, 200));  // neutral chroma, luma 200
+  FrameConverter conv;
+  const cv::Mat& out = conv.convert(wrap(uyvy, "yuv422"));
+  ASSERT_EQ(out.type(), CV_8UC3);
+  // BT.601 video range: Y = 200 is (200 - 16) * 255 / 219 = 214 on every channel.
+  EXPECT_NEAR(out.at<cv::Vec3b>(4, 4)[1], 214, 2);
+  cv::Mat rgb16(8, 8, CV_16UC3, cv::Scalar(100, 2000, 4000));
+  rgb16(cv::Rect(0, 0, 4, 8)).setTo(cv::Scalar(0, 0, 0));
+  const cv::Mat& out16 = conv.convert(wrap(rgb16, "rgb16"));
+  ASSERT_EQ(out16.type(), CV_8UC3);
+  EXPECT_GT(out16.at<cv::Vec3b>(4, 6)[0], out16.at<cv::Vec3b>(4, 6)[2]);  // B = 4000 (third in RGB) is channel 0 of BGR
+}
+
+TEST(ImageConversion, UnsupportedEncodingsAreRefusedByName) {
+  FrameConverter conv;
+  cv::Mat f32(4, 4, CV_32FC3, cv::Scalar(0.5, 0.5, 0.5));
+  for (const char* enc : {"32FC3", "16SC1", "64FC1", "garbage", ""}) {
+    try {
+      conv.convert(wrap(f32, enc));
+      FAIL() << "accepted " << enc;
+    } catch (const UnsupportedEncoding& e) {
+      EXPECT_NE(std::string(e.what()).find(std::string("'") + enc + "'"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_TRUE(obstacle_tracker::bridge::isSupportedEncoding("bayer_gbrg16"));
+  EXPECT_FALSE(obstacle_tracker::bridge::isSupportedEncoding("32FC1"));
+}
+
+TEST(ImageConversion, MalformedMessagesNeverReadOutside) {
+  FrameConverter conv;
+  sensor_msgs::Image msg = wrap(obstacle_tracker::testing::skyFrame(0, 16, 16), "bgr8");
+  sensor_msgs::Image short_data = msg;
+  short_data.data.resize(msg.data.size() - 1);
+  EXPECT_THROW(conv.convert(short_data), MalformedImage);
+  sensor_msgs::Image short_step = msg;
+  short_step.step = 16 * 3 - 1;
+  EXPECT_THROW(conv.convert(short_step), MalformedImage);
+  sensor_msgs::Image empty = msg;
+  empty.width = 0;
+  EXPECT_THROW(conv.convert(empty), MalformedImage);
+  sensor_msgs::Image huge = msg;
+  huge.width = 4000000000u;
+  huge.height = 4000000000u;
+  huge.step = 4000000000u;
+  EXPECT_THROW(conv.convert(huge), MalformedImage);
+  sensor_msgs::Image odd_yuv = wrap(cv::Mat(4, 5, CV_8UC2, cv::Scalar(0)), "yuv422");
+  EXPECT_THROW(conv.convert(odd_yuv), MalformedImage);
+  // The converter still works afterwards.
+  EXPECT_EQ(conv.convert(msg).type(), CV_8UC3);
+}
+
+TEST(CameraGeometry, PrincipalPointAndKnownAngles) {
+  sensor_msgs::CameraInfo info;
+  info.width = 640;
+  info.height = 480;
+  info.K = {500.0, 0.0, 319.5, 0.0, 500.0, 239.5, 0.0, 0.0, 1.0};
+  CameraGeometry cam;
+  std::string error;
+  ASSERT_TRUE(cam.setCameraInfo(info, &error)) << error;
+  // The pixel whose centre is the principal point: corner coordinates (320, 240).
+  const cv::Vec3d centre = cam.ray(320.0, 240.0);
+  EXPECT_NEAR(centre[0], 0.0, 1e-12);
+  EXPECT_NEAR(centre[1], 0.0, 1e-12);
+  EXPECT_NEAR(centre[2], 1.0, 1e-12);
+  // A box from x = cx - 500 to cx + 500 subtends 2 * atan(1) = 90 degrees; its centre row is the
+  // principal row, so the bearing has no y component and points along z.
+  const auto g = cam.box(cv::Rect2f(320.0f - 500.0f, 240.0f - 50.0f, 1000.0f, 100.0f));
+  EXPECT_NEAR(g.angular_width, M_PI / 2.0, 1e-9);
+  EXPECT_NEAR(g.angular_height, 2.0 * std::atan(50.0 / 500.0), 1e-9);
+  EXPECT_NEAR(cv::norm(g.bearing), 1.0, 1e-12);
+  EXPECT_NEAR(g.bearing[2], 1.0, 1e-12);
+  // Right of the centre is +x, below is +y (optical frame).
+  const cv::Vec3d r = cam.ray(320.0 + 500.0, 240.0 + 500.0);
+  EXPECT_NEAR(r[0], 1.0 / std::sqrt(3.0), 1e-12);
+  EXPECT_NEAR(r[1], 1.0 / std::sqrt(3.0), 1e-12);
+}
+
+TEST(CameraGeometry, DistortionIsUndoneAndBinningHonoured) {
+  sensor_msgs::CameraInfo info;
+  info.K = {400.0, 0.0, 200.0, 0.0, 400.0, 150.0, 0.0, 0.0, 1.0};
+  info.distortion_model = "plumb_bob";
+  info.D = {-0.2, 0.05, 0.0, 0.0, 0.0};
+  CameraGeometry cam;
+  std::string error;
+  ASSERT_TRUE(cam.setCameraInfo(info, &error)) << error;
+  // Distort a known normalised point with the same model, then look it up.
+  const cv::Point2d xn(0.3, -0.2);
+  const double r2 = xn.x * xn.x + xn.y * xn.y, k = 1.0 - 0.2 * r2 + 0.05 * r2 * r2;
+  const double u = 400.0 * xn.x * k + 200.0 + 0.5, v = 400.0 * xn.y * k + 150.0 + 0.5;
+  const cv::Vec3d ray = cam.ray(u, v);
+  EXPECT_NEAR(ray[0] / ray[2], xn.x, 1e-6);
+  EXPECT_NEAR(ray[1] / ray[2], xn.y, 1e-6);
+
+  sensor_msgs::CameraInfo binned;
+  binned.K = {400.0, 0.0, 199.5, 0.0, 400.0, 149.5, 0.0, 0.0, 1.0};
+  binned.binning_x = binned.binning_y = 2;
+  ASSERT_TRUE(cam.setCameraInfo(binned, &error)) << error;
+  const cv::Vec3d c = cam.ray(100.0, 75.0);  // binned pixel corner (100, 75) = full (200, 150)
+  EXPECT_NEAR(c[0], 0.0, 1e-12);
+  EXPECT_NEAR(c[1], 0.0, 1e-12);
+}
+
+TEST(CameraGeometry, UnusableCameraInfoIsRefused) {
+  CameraGeometry cam;
+  std::string error;
+  sensor_msgs::CameraInfo zero;  // all-zero K (an uncalibrated driver)
+  EXPECT_FALSE(cam.setCameraInfo(zero, &error));
+  EXPECT_FALSE(error.empty());
+  EXPECT_FALSE(cam.valid());
+  sensor_msgs::CameraInfo unknown;
+  unknown.K = {400.0, 0.0, 200.0, 0.0, 400.0, 150.0, 0.0, 0.0, 1.0};
+  unknown.distortion_model = "mystery";
+  unknown.D = {0.1};
+  EXPECT_FALSE(cam.setCameraInfo(unknown, &error));
+  unknown.D = {0.0};  // no distortion: the model name does not matter
+  EXPECT_TRUE(cam.setCameraInfo(unknown, &error)) << error;
+  unknown.K[0] = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(cam.setCameraInfo(unknown, &error));
+}
+
+TEST(Parameters, ConfigRoundTripCoversEveryCoreParameter) {
+  EXPECT_TRUE(obstacle_tracker::bridge::paramsMissingFromConfig().empty());
+  core::Params p;
+  for (const core::ParamInfo& info : core::paramTable()) {
+    // A value inside the range that differs from the default.
+    const double v = std::string(info.type) == "bool" ? (info.default_value != 0.0 ? 0.0 : 1.0)
+                     : std::string(info.type) == "int" ? std::floor(0.5 * (info.min_value + info.max_value))
+                                                        : 0.25 * info.min_value + 0.75 * info.max_value;
+    ASSERT_TRUE(core::setParam(p, info.name, v));
+  }
+  const obstacle_tracker::ObstacleTrackerConfig config =
+      obstacle_tracker::bridge::configFromParams(p, obstacle_tracker::ObstacleTrackerConfig::__getDefault__());
+  std::vector<std::string> messages;
+  const core::Params back = obstacle_tracker::bridge::paramsFromConfig(config, core::Params(), &messages);
+  EXPECT_TRUE(messages.empty());
+  for (const core::ParamInfo& info : core::paramTable()) {
+    EXPECT_DOUBLE_EQ(core::getParam(back, info.name), core::getParam(p, info.name)) << info.name;
+  }
+}
+
+TEST(Parameters, OutOfRangeConfigValuesAreClampedWithAMessage) {
+  obstacle_tracker::ObstacleTrackerConfig config = obstacle_tracker::ObstacleTrackerConfig::__getDefault__();
+  config.peak_threshold = 7.0;  // max 1
+  std::vector<std::string> messages;
+  const core::Params p = obstacle_tracker::bridge::paramsFromConfig(config, core::Params(), &messages);
+  EXPECT_DOUBLE_EQ(p.peak_threshold, 1.0);
+  ASSERT_EQ(messages.size(), 1u);
+  EXPECT_NE(messages[0].find("peak_threshold"), std::string::npos);
+}
+
+TEST(Messages, ObstacleFieldsAndStates) {
+  core::Obstacle o;
+  o.id = 7;
+  o.box = cv::Rect2f(1.5f, 2.5f, 30.0f, 20.0f);
+  o.confidence = 0.8f;
+  o.peak = 0.6f;
+  o.psr = 12.0f;
+  o.state = core::TrackState::kRedetecting;
+  o.expansion_rate = 0.5;
+  o.time_to_contact = 2.0;
+  obstacle_tracker::Obstacle msg;
+  obstacle_tracker::bridge::toMessage(o, msg);
+  EXPECT_EQ(msg.id, 7u);
+  EXPECT_FLOAT_EQ(msg.x, 1.5f);
+  EXPECT_FLOAT_EQ(msg.height, 20.0f);
+  EXPECT_EQ(msg.state, obstacle_tracker::Obstacle::STATE_REDETECTING);
+  EXPECT_FALSE(msg.has_bearing);
+  EXPECT_FLOAT_EQ(msg.time_to_contact, 2.0f);
+  o.time_to_contact = std::numeric_limits<double>::infinity();
+  obstacle_tracker::bridge::toMessage(o, msg);
+  EXPECT_TRUE(std::isinf(msg.time_to_contact));
+  EXPECT_EQ(obstacle_tracker::bridge::toMessageState(core::TrackState::kTracking), obstacle_tracker::Obstacle::STATE_TRACKING);
+  EXPECT_EQ(obstacle_tracker::bridge::toMessageState(core::TrackState::kLost), obstacle_tracker::Obstacle::STATE_LOST);
+}
+
+TEST(Overlay, BoxIsDrawnInTheStateColour) {
+  const cv::Mat grey(120, 160, CV_8UC1, cv::Scalar(100));
+  core::Obstacle o;
+  o.id = 1;
+  o.box = cv::Rect2f(40.0f, 40.0f, 50.0f, 30.0f);
+  o.state = core::TrackState::kTracking;
+  cv::Mat out;
+  obstacle_tracker::bridge::drawOverlay(grey, {o}, "tracking", out);
+  ASSERT_EQ(out.type(), CV_8UC3);
+  EXPECT_EQ(out.at<cv::Vec3b>(55, 40), cv::Vec3b(0, 255, 0));  // left edge of the box
+  EXPECT_EQ(out.at<cv::Vec3b>(55, 65), cv::Vec3b(100, 100, 100));  // inside: untouched
+}
