@@ -435,6 +435,9 @@ struct KcfTracker::Impl {
   // PSR (Bolme et al. 2010): (peak - mean) / std of the response outside the 11x11 cells around
   // the peak (cyclic).
   float psrOf(const cv::Mat& r, cv::Point p, float peak) const {
+    // 11 x 11 as in MOSSE when the grid has at least 20 cells a side, narrower on small grids so
+    // a sidelobe remains.
+    const int excl = std::min(kPsrExclusion, std::min(rows, cols) / 4);
     double sum = 0.0, sum2 = 0.0;
     int count = 0;
     for (int y = 0; y < rows; ++y) {
@@ -444,7 +447,7 @@ struct KcfTracker::Impl {
       for (int x = 0; x < cols; ++x) {
         int dx = std::abs(x - p.x);
         dx = std::min(dx, cols - dx);
-        if (dy <= kPsrExclusion && dx <= kPsrExclusion) continue;
+        if (dy <= excl && dx <= excl) continue;
         sum += rp[x];
         sum2 += static_cast<double>(rp[x]) * rp[x];
         ++count;
