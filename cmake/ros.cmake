@@ -88,6 +88,13 @@ if(CATKIN_ENABLE_TESTING)
     file(RELATIVE_PATH rel ${PROJECT_SOURCE_DIR} ${launch})
     add_rostest(${rel} DEPENDENCIES obstacle_tracker_nodelet ${OT_NODES} ${OT_ROSTEST_DEPS})
   endforeach()
+
+  # rviz shows the overlay: rviz under Xvfb with config/obstacle_tracker.rviz, a screenshot, the
+  # box colour found in it (skipped with a message where rviz / Xvfb / ImageMagick are missing).
+  add_test(NAME rviz_overlay_screenshot
+    COMMAND bash ${PROJECT_SOURCE_DIR}/test/ros/rviz_screenshot.sh ${CATKIN_DEVEL_PREFIX}
+            ${CMAKE_BINARY_DIR}/test_results/rviz)
+  set_tests_properties(rviz_overlay_screenshot PROPERTIES LABELS ros TIMEOUT 300)
 endif()
 include(cmake/ros_accuracy.cmake OPTIONAL)
 include(cmake/ros_reliability.cmake OPTIONAL)

@@ -1,0 +1,65 @@
+#!/usr/bin/env bash
+# rviz overlay test: starts rviz under Xvfb with config/obstacle_tracker.rviz (through
+# launch/tracker.launch rviz:=true) while synthetic frames are published, takes screenshots with
+# ImageMagick's import and passes when the overlay's box colour (pure green, tracking) is visible.
+# Skipped, with exit 0 and a SKIPPED message, where rviz, Xvfb or ImageMagick is not installed.
+#   usage: rviz_screenshot.sh DEVEL_DIR OUT_DIR
+set -u
+DEVEL=${1:?devel dir}
+OUT=${2:?output dir}
+HERE=$(cd "$(dirname "$0")" && pwd)
+
+for tool in rviz xvfb-run Xvfb /usr/bin/import; do
+  if ! command -v "$tool" >/dev/null 2>&1; then
+    echo "SKIPPED: rviz screenshot test: '$tool' is not installed (apt-get install rviz xvfb imagemagick)"
+    exit 0
+  fi
+done
+
+if [ "${1:-}" != "--inner" ] && [ -z "${OT_RVIZ_INNER:-}" ]; then
+  mkdir -p "$OUT"
+  export OT_RVIZ_INNER=1
+  exec xvfb-run -a -s "-screen 0 1280x1024x24" bash "$0" "$DEVEL" "$OUT"
+fi
+
+# Inside Xvfb: our own master on a free port.
+export PATH=/usr/bin:/bin:$PATH
+export ROS_HOSTNAME=localhost
+export ROS_HOME=${ROS_HOME:-$OUT/ros_home}
+PORT=$(python3 -c 'import socket; s = socket.socket(); s.bind(("localhost", 0)); print(s.getsockname()[1])')
+export ROS_MASTER_URI=http://localhost:$PORT
+export LIBGL_ALWAYS_SOFTWARE=1
+SHOT=$OUT/rviz_overlay.png
+LOG=$OUT/rviz_overlay_roslaunch.log
+rm -f "$SHOT"
+
+"$DEVEL/env.sh" roslaunch -p "$PORT" "$HERE/rviz_overlay.launch" >"$LOG" 2>&1 &
+LAUNCH=$!
+
+status=1
+green=0
+for attempt in $(seq 1 20); do
+  sleep 3
+  if ! kill -0 "$LAUNCH" 2>/dev/null; then
+    echo "roslaunch ended early; log:"; tail -30 "$LOG"
+    break
+  fi
+  /usr/bin/import -window root "$SHOT" 2>/dev/null || continue
+  green=$("$DEVEL/lib/obstacle_tracker/tool_count_colour" "$SHOT" 0 255 0 60 || echo 0)
+  echo "screenshot $attempt: $green overlay-green pixels"
+  # The drawn box: at least a few dozen pixels of its outline after rviz scales the image.
+  if [ "$green" -ge 40 ]; then status=0; break; fi
+done
+
+kill -INT "$LAUNCH" 2>/dev/null
+for _ in $(seq 1 20); do kill -0 "$LAUNCH" 2>/dev/null || break; sleep 0.5; done
+kill -KILL "$LAUNCH" 2>/dev/null
+wait "$LAUNCH" 2>/dev/null
+
+if [ $status -eq 0 ]; then
+  echo "PASSED: rviz shows the overlay box ($green green pixels), screenshot $SHOT"
+else
+  echo "FAILED: no overlay box in rviz's window after 60 s (last screenshot $SHOT, log $LOG)"
+  tail -20 "$LOG"
+fi
+exit $status
