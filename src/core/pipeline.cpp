@@ -48,6 +48,10 @@ constexpr float kMaxPredictionBoxes = 2.0f;  // predicted shift capped at this m
 constexpr float kDistanceSigma = 0.5f;       // distance prior sigma, fraction of the window side
 constexpr float kSizeSigma = 0.7f;           // size prior sigma on |ln(area ratio)| / 2
 constexpr float kSpawnMaxIou = 0.05f;        // a new track must not overlap an existing one
+constexpr float kMinSearchBoxSide = 16.0f;   // px; the window is search_window_scale x this at least
+constexpr float kWindowGrowthPerFailure = 0.5f;
+constexpr float kMaxWindowGrowth = 3.0f;
+constexpr float kMaxResize = 1.5f;           // a re-detected box side is within 1/1.5..1.5 x the last
 
 float iou(const cv::Rect2f& a, const cv::Rect2f& b) {
   const float inter = (a & b).area();
@@ -113,12 +117,12 @@ struct Pipeline::Impl {
     float ref_peak = 0.0f, ref_psr = 0.0f;
     int ref_count = 0;
     float learn_gate = -1.0f;  // learn_threshold currently set in the filter
+    bool learning = true;      // learning_rate currently set in the filter (else 0)
   };
 
   struct Candidate {
     cv::Rect2f box;
     float prior = 0.0f;
-    bool from_filter = false;
     const SalientRegion* region = nullptr;
   };
 
@@ -239,6 +243,7 @@ struct Pipeline::Impl {
     t->ref_peak = t->ref_psr = 0.0f;
     t->ref_count = 0;
     t->learn_gate = -1.0f;
+    t->learning = true;
     t->looming.reset();
     t->looming.add(stamp, box);
     tracks.push_back(std::move(t));
@@ -274,17 +279,18 @@ struct Pipeline::Impl {
 
   // One re-detection attempt; true when a candidate was accepted (the filter restarted).
   bool redetect(Track& t, const cv::Mat& frame, double stamp) {
+    // The filter's own answer already failed this frame (step()); candidates are salient regions.
     const cv::Rect2f pred = predict(t, stamp);
-    const cv::Rect window = SaliencyDetector::searchWindow(frame_size, pred, params.search_window_scale);
+    // The window grows while the re-detection fails (the object keeps moving) and never gets
+    // too small for a tiny target (a few-pixel drone moves farther than its size per frame).
+    const float grow = std::min(kMaxWindowGrowth, 1.0f + kWindowGrowthPerFailure * static_cast<float>(t.failures));
+    const cv::Size2f search_size(std::max(kMinSearchBoxSide, pred.width * grow),
+                                 std::max(kMinSearchBoxSide, pred.height * grow));
+    const cv::Rect2f search_box = centredAt(centre(pred), search_size);
+    const cv::Rect window = SaliencyDetector::searchWindow(frame_size, search_box, params.search_window_scale);
     candidates.clear();
-    // The filter's own answer around the prediction.
-    Candidate own;
-    own.box = pred;
-    own.prior = 1.0f;
-    own.from_filter = true;
-    candidates.push_back(own);
     if (window.area() > 0) {
-      const std::vector<SalientRegion>& regions = saliency.detectInWindow(frame, pred);
+      const std::vector<SalientRegion>& regions = saliency.detectInWindow(frame, search_box);
       float best_score = 0.0f;
       for (const auto& r : regions) best_score = std::max(best_score, r.score);
       const float side = static_cast<float>(std::max(window.width, window.height));
@@ -306,18 +312,17 @@ struct Pipeline::Impl {
         candidates.push_back(c);
       }
     }
-    // Best priors first (the filter's own candidate keeps prior 1 and goes first).
-    std::sort(candidates.begin() + 1, candidates.end(),
+    // Best priors first.
+    std::sort(candidates.begin(), candidates.end(),
               [](const Candidate& a, const Candidate& b) { return a.prior > b.prior; });
     const std::size_t verify =
-        std::min<std::size_t>(candidates.size(), 1 + static_cast<std::size_t>(params.redetect_candidates));
+        std::min<std::size_t>(candidates.size(), static_cast<std::size_t>(params.redetect_candidates));
     const float accept = goodPeak(t);
     int best = -1;
     float best_final = 0.0f;
     KcfResult best_result;
     for (std::size_t i = 0; i < verify; ++i) {
       KcfResult r = t.kcf.evaluate(frame, candidates[i].box);
-      if (i == 0) t.result = r;  // the filter's answer at the prediction, reported if none passes
       if (!(r.peak >= accept)) continue;
       const float final_score = r.peak * (0.5f + 0.5f * candidates[i].prior);
       if (final_score > best_final) {
@@ -329,7 +334,7 @@ struct Pipeline::Impl {
     // A split: with room for more tracks, a clearly separated, strong salient region that is
     // not the accepted one becomes a new track (handled by the caller after the loop).
     if (params.max_obstacles > 1) {
-      for (std::size_t i = 1; i < candidates.size(); ++i) {
+      for (std::size_t i = 0; i < candidates.size(); ++i) {
         if (static_cast<int>(i) == best || candidates[i].prior < 0.5f) continue;
         if (best >= 0 && iou(candidates[i].box, candidates[static_cast<std::size_t>(best)].box) > 0.0f) continue;
         spawn.push_back(candidates[i].box);
@@ -340,14 +345,22 @@ struct Pipeline::Impl {
     const Candidate& c = candidates[static_cast<std::size_t>(best)];
     // The filter's own candidate: keep its box (its size); a salient region: its own box, so the
     // box takes the object's current size and shape (the paper's re-initialisation).
-    cv::Rect2f box = c.from_filter ? best_result.box : c.box;
+    cv::Rect2f box = c.box;
+    {
+      // The region's size and shape, within a band around the last good box: Otsu regions of a
+      // few-pixel target are often only its hot core, and one bad segmentation must not
+      // collapse or blow up the box.
+      const cv::Size2f last = t.good_box.size();
+      const cv::Size2f size(std::min(std::max(box.width, last.width / kMaxResize), last.width * kMaxResize),
+                            std::min(std::max(box.height, last.height / kMaxResize), last.height * kMaxResize));
+      box = centredAt(centre(box), size);
+    }
     if (!usableBox(box, frame_size)) return false;
     t.kcf.init(frame, box);
-    t.learn_gate = -1.0f;  // init keeps the filter's params; set the gate again next frame
     t.result = best_result;
     t.result.box = box;
     t.result.model_updated = true;
-    acceptGood(t, box, stamp, /*restarted=*/!c.from_filter);
+    acceptGood(t, box, stamp, /*restarted=*/true);
     return true;
   }
 
@@ -360,20 +373,24 @@ struct Pipeline::Impl {
     return th;
   }
 
-  // Learning gate for the next update: learn_threshold, raised to the confidence of a response
-  // at learn_relative_threshold x the running mean peak and PSR (LMCF's rule), capped so that a
-  // perfect history does not freeze the model.
-  void setLearnGate(Track& t) {
+  // Filter settings for the next update. While tracking: learning gated by learn_threshold,
+  // raised to the confidence of a response at learn_relative_threshold x the running mean peak
+  // and PSR (LMCF's rule, Wang et al. CVPR 2017), capped so that a perfect history does not
+  // freeze the model. While re-detecting: no learning at all (learning_rate 0), the filter only
+  // searches around its last position.
+  void configureFilter(Track& t, bool learn) {
     float gate = static_cast<float>(params.learn_threshold);
     if (t.ref_count >= kRefWarmup && params.learn_relative_threshold > 0.0) {
       const float k = static_cast<float>(params.learn_relative_threshold);
       gate = std::max(gate, std::min(kMaxLearnGate, KcfTracker::confidenceFrom(k * t.ref_peak, k * t.ref_psr)));
     }
-    if (std::abs(gate - t.learn_gate) > 1e-3f) {
+    if (std::abs(gate - t.learn_gate) > 1e-3f || learn != t.learning) {
       Params p = params;
       p.learn_threshold = gate;
+      if (!learn) p.learning_rate = 0.0;
       t.kcf.setParams(p);
       t.learn_gate = gate;
+      t.learning = learn;
     }
   }
 
@@ -391,18 +408,17 @@ struct Pipeline::Impl {
 
   void step(Track& t, const cv::Mat& frame, double stamp) {
     ++t.age;
-    if (t.state == TrackState::kTracking) {
-      setLearnGate(t);
-      KcfResult r = t.kcf.update(frame);
-      t.result = r;
-      if (r.peak >= goodPeak(t) && usableBox(r.box, frame_size)) {
-        updateRefs(t, r);
-        acceptGood(t, r.box, stamp, false);
-        return;
-      }
-      t.state = TrackState::kRedetecting;
+    // The filter first, in both states (re-detecting: without learning).
+    configureFilter(t, t.state == TrackState::kTracking);
+    const KcfResult r = t.kcf.update(frame);
+    t.result = r;
+    if (r.peak >= goodPeak(t) && usableBox(r.box, frame_size)) {
+      updateRefs(t, r);
+      acceptGood(t, r.box, stamp, false);
+      return;
     }
-    // Re-detecting (also on the frame where the peak fell).
+    t.state = TrackState::kRedetecting;
+    // Salient regions around the prediction (also on the frame where the peak fell).
     if (redetect(t, frame, stamp)) return;
     ++t.failures;
     t.box = predict(t, stamp);
@@ -524,8 +540,8 @@ struct Pipeline::Impl {
   }
 
   static constexpr int kRefWarmup = 3;         // good frames before the relative tests apply
-  static constexpr float kRefSmoothing = 0.05f;  // EMA weight of the newest good frame
-  static constexpr float kMaxLearnGate = 0.9f;
+  static constexpr float kRefSmoothing = 0.2f;   // EMA weight of the newest good frame
+  static constexpr float kMaxLearnGate = 0.75f;
 };
 
 Pipeline::Pipeline(const Params& params) : impl_(new Impl(params)) {}

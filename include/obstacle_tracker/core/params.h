@@ -18,7 +18,7 @@ namespace core {
 
 // Closed loop (DESIGN.md "Core contracts").
 #define OT_LOOP_PARAMS(X)                                                                          \
-  X(double, peak_threshold, 0.20, 0.0, 1.0, "",                                                    \
+  X(double, peak_threshold, 0.10, 0.0, 1.0, "",                                                    \
     "raw KCF response peak below which the track re-detects (the paper's test)")                  \
   X(double, learn_threshold, 0.40, 0.0, 1.0, "",                                                   \
     "confidence below which the filter model is not updated (keeps occluders out)")               \
