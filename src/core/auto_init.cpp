@@ -55,7 +55,9 @@ constexpr float kGrowShare = 0.3f;
 constexpr double kRefineWindowScale = 4.0;  // window around a confirmed candidate for its box
 constexpr float kRefineMaxGrowth = 16.0f;   // a refined box may cover at most 16 x the candidate's
 constexpr float kMaxAspect = 4.5f;      // candidate boxes more elongated are lines
-constexpr double kMinLinearity = 0.5;   // share of position variance a steady motion explains  // a candidate's region: pixels >= this share of its peak
+constexpr double kMinLinearity = 0.5;   // share of position variance a steady motion explains
+constexpr int kLag = 4;                 // frames back for the appearance-change test
+constexpr double kMinChange = 0.5;      // appearance change / local contrast of a moving target  // a candidate's region: pixels >= this share of its peak
 
 struct Candidate {
   cv::Rect box;
@@ -63,7 +65,7 @@ struct Candidate {
   int area = 0;
   float peak = 0.0f, mean = 0.0f;
   bool touches_border = false;
-  bool used = false;
+  int stamp = -1;  // label of its region in the stamp image
 };
 
 constexpr int kHistory = 32;  // positions kept per track for the motion fit
@@ -80,8 +82,7 @@ struct Track {
     rel[k] = p - cv::Point2f(static_cast<float>(background.x), static_cast<float>(background.y));
     ++count;
   }
-  cv::Point2f first_centre, centre, velocity;
-  cv::Point2d first_background;
+  cv::Point2f centre, velocity;
   cv::Rect box;
   int first_frame = 0, last_frame = 0, hits = 0, area = 0;
   double sum_peak = 0.0, last_mean = 0.0;
@@ -97,7 +98,7 @@ struct AutoInitializer::Impl {
   MatArena grey_arena, small_arena, half_arena, up_arena, sal_arena, blur_arena, box_arena, contrast_arena,
       prob_arena;
   cv::Mat prev_small, cur_small, ref_small, hann;
-  cv::Point2d background{0.0, 0.0}, last_shift{0.0, 0.0}, ref_background{0.0, 0.0};
+  cv::Point2d background{0.0, 0.0}, ref_background{0.0, 0.0};
   cv::Size size;
   int frame_index = 0;
   int horizon = -1;
@@ -106,6 +107,9 @@ struct AutoInitializer::Impl {
   std::vector<float> cell_max;
   std::vector<uchar> text_flag;
   cv::Mat prev_grey, still, diff;  // persistent: previous grey frame, per-pixel still count
+  std::array<cv::Mat, kLag + 1> past;          // grey frames t, t-1, ..., t-kLag (ring)
+  std::array<cv::Point2d, kLag + 1> past_background;
+  cv::Mat contrast_map;                        // last frame's local contrast (CV_8U), for the lag test
   std::vector<Candidate> candidates;
   std::vector<Track> tracks;
   std::vector<SalientRegion> confirmed, raw;
@@ -121,7 +125,7 @@ struct AutoInitializer::Impl {
     prev_small.release();
     ref_small.release();
     prev_grey.release();
-    background = last_shift = ref_background = cv::Point2d(0.0, 0.0);
+    background = ref_background = cv::Point2d(0.0, 0.0);
     frame_index = 0;
     horizon = -1;
     tracks.clear();
@@ -130,7 +134,6 @@ struct AutoInitializer::Impl {
   }
 
   void globalMotion(const cv::Mat& grey) {
-    last_shift = cv::Point2d(0.0, 0.0);
     if (grey.cols < 64 || grey.rows < 64) return;
     const int f = 4;
     cv::Mat small = small_arena.get(grey.rows / f, grey.cols / f, CV_8U);
@@ -143,7 +146,6 @@ struct AutoInitializer::Impl {
     auto plausible = [&](const cv::Point2d& s, double response) {
       return response > 0.05 && std::abs(s.x) < small.cols / 3.0 && std::abs(s.y) < small.rows / 3.0;
     };
-    const cv::Point2d before = background;
     bool reanchor = ref_small.empty() || ref_small.size() != cur_small.size();
     if (!reanchor) {
       double response = 0.0;
@@ -159,7 +161,6 @@ struct AutoInitializer::Impl {
         reanchor = true;
       }
     }
-    last_shift = background - before;
     if (reanchor) {
       cur_small.copyTo(ref_small);
       ref_background = background;
@@ -231,6 +232,7 @@ struct AutoInitializer::Impl {
       cv::blur(grey, small_mean, cv::Size(3, 3));
       cv::blur(grey, large_mean, cv::Size(21, 21));
       cv::absdiff(small_mean, large_mean, contrast);
+      contrast_map = contrast;
       // P = min(255, 2 contrast) x S / 255: contrast is stretched x2 (saturating) because small
       // targets rarely reach 128 levels of local contrast and the product must not vanish in
       // 8 bits.
@@ -304,20 +306,22 @@ struct AutoInitializer::Impl {
     }
     const double max_area = params.max_object_area_fraction * rows * cols;
     size_t kept = 0;
+    if (stamp_value > INT32_MAX - 1024) {
+      std::fill(stamp.begin(), stamp.end(), 0);
+      stamp_value = 0;
+    }
     for (size_t i = 0; i < candidates.size(); ++i) {
       Candidate c = candidates[i];
       const cv::Point seed(static_cast<int>(c.centre.x), static_cast<int>(c.centre.y));
-      if (stamp[static_cast<size_t>(seed.y) * cols + seed.x] == stamp_value && stamp_value > 0 && i > 0) {
-        // Already inside the region of a stronger peak of this frame.
-        bool inside = false;
-        for (size_t j = 0; j < kept; ++j) inside |= candidates[j].box.contains(seed);
-        if (inside) continue;
-      }
+      // A pixel of the region of a stronger candidate already kept: the same object. (A seed in
+      // the region of a stronger peak that was filtered out is still grown: that region may be a
+      // border-glued structure the target touches at 0.3 x its peak.)
+      const int seed_stamp = stamp[static_cast<size_t>(seed.y) * cols + seed.x];
+      bool same = false;
+      for (size_t j = 0; j < kept && !same; ++j) same = candidates[j].stamp == seed_stamp;
+      if (same) continue;
       ++stamp_value;
-      if (stamp_value == INT32_MAX) {
-        std::fill(stamp.begin(), stamp.end(), 0);
-        stamp_value = 1;
-      }
+      c.stamp = stamp_value;
       const int thr = std::max(1, static_cast<int>(std::ceil(kGrowShare * c.peak)));
       const int x_lo = std::max(0, seed.x - kGrowRadius), x_hi = std::min(cols - 1, seed.x + kGrowRadius);
       const int y_lo = std::max(0, seed.y - kGrowRadius), y_hi = std::min(rows - 1, seed.y + kGrowRadius);
@@ -352,14 +356,17 @@ struct AutoInitializer::Impl {
       // Box area: the grown core of a target of a few pixels is smaller than the target.
       if (c.box.area() < params.min_object_area || c.area > max_area) continue;
       if (params.auto_init_reject_static && frame_index > 0) {
-        // Share of the box's pixels unchanged for kStillFrames frames: an overlay (or a static
-        // scene under a still camera). A moving target changes most of its box every frame.
-        int still_px = 0;
+        // Share of the box's pixels, or of the region's own pixels, unchanged for kStillFrames
+        // frames: an overlay (or a static scene under a still camera). A moving target changes
+        // most of its box and of its pixels every frame; an overlay line crossing a textured
+        // background keeps its own pixels but not its box.
+        int still_px = 0, still_region = 0;
         for (int y = c.box.y; y < c.box.y + c.box.height; ++y) {
           const uchar* sc = still.ptr<uchar>(y);
           for (int x = c.box.x; x < c.box.x + c.box.width; ++x) still_px += sc[x] >= kStillFrames;
         }
-        if (still_px >= kStillShare * c.box.area()) continue;
+        for (const int q : queue) still_region += still.ptr<uchar>(q / cols)[q % cols] >= kStillFrames;
+        if (still_px >= kStillShare * c.box.area() || still_region >= kStillShare * c.area) continue;
       }
       candidates[kept++] = c;
     }
@@ -432,9 +439,8 @@ struct AutoInitializer::Impl {
         tr.remember(frame_index, c.centre, background);
       } else if (tracks.size() < kMaxTracks) {
         Track tr;
-        tr.first_centre = tr.centre = c.centre;
+        tr.centre = c.centre;
         tr.velocity = cv::Point2f(0.0f, 0.0f);
-        tr.first_background = background;
         tr.box = c.box;
         tr.area = c.area;
         tr.first_frame = tr.last_frame = frame_index;
@@ -449,6 +455,36 @@ struct AutoInitializer::Impl {
     tracks.erase(std::remove_if(tracks.begin(), tracks.end(),
                                 [&](const Track& t) { return frame_index - t.last_frame > kMaxMissed; }),
                  tracks.end());
+  }
+
+  // Appearance test of motion against the background: the box now against the same place of
+  // the frame kLag frames ago, displaced by the background's motion since. A static structure
+  // (or an overlay, once the background is accounted for) looks the same up to noise; a moving
+  // target's box held background then. Mean absolute difference over the box (grown by 2 px),
+  // relative to the mean local contrast there, must reach kMinChange. The region-centre motion
+  // fit alone is fooled by regions whose extent fluctuates along a static edge.
+  bool changedAgainstBackground(const cv::Rect& box) const {
+    if (frame_index < kLag || contrast_map.empty()) return true;  // too early to tell
+    const cv::Mat& now = past[static_cast<size_t>(frame_index % (kLag + 1))];
+    const cv::Mat& then = past[static_cast<size_t>((frame_index - kLag) % (kLag + 1))];
+    const cv::Point2d shift = background - past_background[static_cast<size_t>((frame_index - kLag) % (kLag + 1))];
+    const cv::Rect frame_rect(0, 0, now.cols, now.rows);
+    const cv::Rect a = cv::Rect(box.x - 2, box.y - 2, box.width + 4, box.height + 4) & frame_rect;
+    const cv::Point d(static_cast<int>(std::lround(shift.x)), static_cast<int>(std::lround(shift.y)));
+    const cv::Rect b = (a - d) & frame_rect;  // where that content was kLag frames ago
+    const cv::Rect a2 = b + d;
+    if (a2.area() <= 0) return true;
+    double diff_sum = 0.0, contrast_sum = 0.0;
+    for (int y = 0; y < a2.height; ++y) {
+      const uchar* p = now.ptr<uchar>(a2.y + y) + a2.x;
+      const uchar* q = then.ptr<uchar>(b.y + y) + b.x;
+      const uchar* c = contrast_map.ptr<uchar>(a2.y + y) + a2.x;
+      for (int x = 0; x < a2.width; ++x) {
+        diff_sum += std::abs(p[x] - q[x]);
+        contrast_sum += c[x];
+      }
+    }
+    return diff_sum >= kMinChange * (contrast_sum + a2.area());
   }
 
   // Thin lines (reticles, poles, road markings): aspect above kMaxAspect.
@@ -541,11 +577,16 @@ struct AutoInitializer::Impl {
       const double seen = static_cast<double>(t.hits) / age;
       if (params.auto_init_frames > 1 && seen < 0.6) continue;
       if (params.auto_init_shape_filter && isLine(t.box)) continue;
+      if (params.auto_init_min_motion > 0.0 && !changedAgainstBackground(t.box)) continue;
       double score = t.sum_peak / (255.0 * t.hits) * seen;
       if (params.auto_init_min_motion > 0.0) {
         double linearity = 0.0;
         const double motion = motionOf(t, &linearity);
-        if (motion < params.auto_init_min_motion || linearity < kMinLinearity) continue;
+        // At least auto_init_min_motion and half the candidate's size: a region whose extent
+        // fluctuates (a textured structure grown at 0.3 x its peak) moves its centre by a
+        // fraction of its size without going anywhere.
+        const double needed = std::max(params.auto_init_min_motion, 0.5 * std::max(t.box.width, t.box.height));
+        if (motion < needed || linearity < kMinLinearity) continue;
         // Steady motion raises the score up to 3x the threshold.
         score *= std::min(1.0, motion / (3.0 * params.auto_init_min_motion));
       }
@@ -590,6 +631,11 @@ const std::vector<SalientRegion>& AutoInitializer::update(const cv::Mat& frame, 
   }
   m.globalMotion(grey);
   m.updateStill(grey);
+  {
+    cv::Mat& slot = m.past[static_cast<size_t>(m.frame_index % (kLag + 1))];
+    grey.copyTo(slot);  // allocates once per frame size
+    m.past_background[static_cast<size_t>(m.frame_index % (kLag + 1))] = m.background;
+  }
   const cv::Mat p = m.candidateMap(grey);
   m.findCandidates(p);
   m.associate();

@@ -213,15 +213,19 @@ int main(int argc, char** argv) {
       oc::Params mm = d;
       mm.auto_init_min_motion = m;
       static std::vector<std::string> names;  // keeps the variant names alive
+      names.reserve(8);
       names.push_back("defaults, min motion " + std::to_string(static_cast<int>(m)) + " px");
       variants.push_back({names.back().c_str(), mm});
     }
-    oc::Params fast = d;
-    fast.auto_init_frames = 5;
-    variants.push_back({"defaults, 5 frames", fast});
-    oc::Params slow = d;
-    slow.auto_init_frames = 12;
-    variants.push_back({"defaults, 12 frames", slow});
+    for (int n : {5, 8, 10, 12, 15}) {
+      if (n == d.auto_init_frames) continue;
+      oc::Params pn = d;
+      pn.auto_init_frames = n;
+      static std::vector<std::string> frame_names;  // keeps the variant names alive
+      frame_names.reserve(8);
+      frame_names.push_back("defaults, " + std::to_string(n) + " frames");
+      variants.push_back({frame_names.back().c_str(), pn});
+    }
   }
 
   std::printf("## First frame, one-frame detectors (best-ranked region)\n\n");
