@@ -193,9 +193,10 @@ int main(int argc, char** argv) {
     oc::Params no_contrast = d;
     no_contrast.auto_init_local_contrast = false;
     variants.push_back({"persistence + motion, MBD alone (no contrast)", no_contrast});
-    oc::Params no_text = d;
-    no_text.auto_init_reject_text = false;
-    variants.push_back({"defaults, no text-row rejection", no_text});
+    oc::Params text = d;
+    text.auto_init_reject_text = !d.auto_init_reject_text;
+    variants.push_back({text.auto_init_reject_text ? "defaults + text-row rejection" : "defaults, no text-row rejection",
+                        text});
     oc::Params no_static = d;
     no_static.auto_init_reject_static = false;
     variants.push_back({"defaults, no still-pixel rejection", no_static});
