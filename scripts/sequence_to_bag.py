@@ -117,11 +117,15 @@ class SequenceSource:
             stem = os.path.splitext(path)[0]
             folder = os.path.dirname(path)
             if gt_path is None:
-                for cand in (stem + ".txt", stem + "_gt.txt", os.path.join(folder, "groundtruth_rect.txt")):
+                for cand in (stem + ".txt", stem + "_gt.txt", stem + "_groundtruth_rect.txt",
+                             os.path.join(folder, "groundtruth_rect.txt")):
                     if os.path.isfile(cand):
                         gt_path = cand
                         break
-            self.meta["focal_length_px"] = read_key_value(os.path.join(folder, "scene.yaml"), "focal_length_px")
+            for name in (stem + "_scene.yaml", os.path.join(folder, "scene.yaml")):
+                if os.path.isfile(name):
+                    self.meta["focal_length_px"] = read_key_value(name, "focal_length_px")
+                    break
         else:
             sys.exit("sequence_to_bag: %s does not exist" % path)
         self.gt = otb_metrics.load_gt(gt_path) if gt_path else []

@@ -81,6 +81,11 @@ std::vector<SequenceInfo> discover(const std::string& data, const std::string& g
     SequenceInfo one;
     one.path = data;
     one.gt_path = gt_path;
+    // generate_scene writes a video's ground truth as <stem>_groundtruth_rect.txt beside it.
+    const fs::path scene_gt = root.parent_path() / (root.stem().string() + "_groundtruth_rect.txt");
+    if (one.gt_path.empty() && fs::is_regular_file(root) && fs::is_regular_file(scene_gt)) {
+      one.gt_path = scene_gt.string();
+    }
     seqs.push_back(one);
     return seqs;
   }
