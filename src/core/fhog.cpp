@@ -34,6 +34,30 @@ const Directions& directions() {
   return d;
 }
 
+// Per pixel of one row, the centred-difference gradient of the channel with the largest
+// magnitude (NC channels, interleaved; the row's ends are replicated).
+template <int NC>
+void maxGradient(const uchar* row, const uchar* up, const uchar* down, int w, float* gdx,
+                 float* gdy, float* gm2) {
+  for (int x = 0; x < w; ++x) {
+    const int xl = (x > 0 ? x - 1 : 0) * NC;
+    const int xr = (x + 1 < w ? x + 1 : w - 1) * NC;
+    float bx = 0.0f, by = 0.0f, bm = -1.0f;
+    for (int c = 0; c < NC; ++c) {
+      const float gx = static_cast<float>(row[xr + c]) - static_cast<float>(row[xl + c]);
+      const float gy = static_cast<float>(down[x * NC + c]) - static_cast<float>(up[x * NC + c]);
+      const float m = gx * gx + gy * gy;
+      const bool better = m > bm;
+      bm = better ? m : bm;
+      bx = better ? gx : bx;
+      by = better ? gy : by;
+    }
+    gdx[x] = bx;
+    gdy[x] = by;
+    gm2[x] = bm;
+  }
+}
+
 }  // namespace
 
 void FhogExtractor::compute(const cv::Mat& patch, int cell, cv::Mat& out) {
@@ -62,8 +86,6 @@ void FhogExtractor::compute(const cv::Mat& patch, int cell, cv::Mat& out) {
 
   // Per-column tables (neighbour offsets, cell index and bilinear weights along x), made once per
   // width; per-row scratch for the winning gradient. Cell centres are at (i + 0.5) * cell.
-  col_left_.resize(w);
-  col_right_.resize(w);
   col_cell_.resize(w);
   col_w0_.resize(w);
   row_dx_.resize(w);
@@ -71,8 +93,6 @@ void FhogExtractor::compute(const cv::Mat& patch, int cell, cv::Mat& out) {
   row_m2_.resize(w);
   row_bin_.resize(w);
   for (int x = 0; x < w; ++x) {
-    col_left_[x] = std::max(x - 1, 0) * nc;
-    col_right_[x] = std::min(x + 1, w - 1) * nc;
     const float xp = (static_cast<float>(x) + 0.5f) * inv_cell - 0.5f;
     const int ix = static_cast<int>(std::floor(xp));
     col_cell_[x] = ix;
@@ -88,18 +108,10 @@ void FhogExtractor::compute(const cv::Mat& patch, int cell, cv::Mat& out) {
     const uchar* up = patch.ptr<uchar>(std::max(y - 1, 0));
     const uchar* down = patch.ptr<uchar>(std::min(y + 1, h - 1));
     // Gradient of the channel with the largest magnitude (replicated border).
-    for (int x = 0; x < w; ++x) gm2[x] = -1.0f;
-    for (int c = 0; c < nc; ++c) {
-      for (int x = 0; x < w; ++x) {
-        const float gx = static_cast<float>(row[col_right_[x] + c]) -
-                         static_cast<float>(row[col_left_[x] + c]);
-        const float gy = static_cast<float>(down[x * nc + c]) - static_cast<float>(up[x * nc + c]);
-        const float m = gx * gx + gy * gy;
-        const bool better = m > gm2[x];
-        gm2[x] = better ? m : gm2[x];
-        gdx[x] = better ? gx : gdx[x];
-        gdy[x] = better ? gy : gdy[x];
-      }
+    if (nc == 1) {
+      maxGradient<1>(row, up, down, w, gdx, gdy, gm2);
+    } else {
+      maxGradient<3>(row, up, down, w, gdx, gdy, gm2);
     }
     // Nearest of the 18 directions: largest |dot| over the 9 axes, its sign picks the half.
     // (Bins are kept as floats so the loop runs in OpenCV's universal intrinsics.)
@@ -124,6 +136,7 @@ void FhogExtractor::compute(const cv::Mat& patch, int cell, cv::Mat& out) {
           bin = cv::v_select(better, kb, bin);
         }
         cv::v_store(gbin + x, bin);
+        cv::v_store(gm2 + x, cv::v_sqrt(cv::vx_load(gm2 + x)));
       }
     }
 #endif
@@ -139,16 +152,18 @@ void FhogExtractor::compute(const cv::Mat& patch, int cell, cv::Mat& out) {
         }
       }
       gbin[x] = bin;
+      gm2[x] = std::sqrt(gm2[x]);
     }
     // Grey level (mean over the colour channels) summed per cell.
     const int grey_row = y / cell;
     if (grey_row < rows) {
       float* gr = grey_.data() + static_cast<size_t>(grey_row) * cols;
       const float inv_nc = 1.0f / static_cast<float>(nc);
-      for (int x = 0; x < cols * cell; ++x) {
-        float g = 0.0f;
-        for (int c = 0; c < nc; ++c) g += static_cast<float>(row[x * nc + c]);
-        gr[x / cell] += g * inv_nc;
+      for (int k = 0; k < cols; ++k) {
+        const uchar* p = row + static_cast<size_t>(k) * cell * nc;
+        int g = 0;
+        for (int i = 0; i < cell * nc; ++i) g += p[i];
+        gr[k] += static_cast<float>(g) * inv_nc;
       }
     }
     // Bilinear votes into the 4 nearest cells.
@@ -160,8 +175,8 @@ void FhogExtractor::compute(const cv::Mat& patch, int cell, cv::Mat& out) {
     float* h1 = iy + 1 < rows ? hist_.data() + static_cast<size_t>(iy + 1) * cols * kOrientations
                               : nullptr;
     for (int x = 0; x < w; ++x) {
-      if (gm2[x] <= 0.0f) continue;
-      const float mag = std::sqrt(gm2[x]);
+      const float mag = gm2[x];  // now the magnitude
+      if (mag <= 0.0f) continue;
       const int bin = static_cast<int>(gbin[x]);
       const int ix = col_cell_[x];
       const float vx0 = col_w0_[x];

@@ -210,14 +210,23 @@ struct KcfTracker::Impl {
       const uchar* r0 = src + static_cast<size_t>(std::min(std::max(i0, 0), sh - 1)) * src_step;
       const uchar* r1 = src + static_cast<size_t>(std::min(std::max(i0 + 1, 0), sh - 1)) * src_step;
       uchar* out = dst.ptr<uchar>(v);
-      for (int u = 0; u < tw; ++u) {
-        const float a = col_a[u];
-        const int k0 = col_i0[u], k1 = col_i1[u];
-        for (int ch = 0; ch < nc; ++ch) {
-          const float top = r0[k0 + ch] + a * (static_cast<float>(r0[k1 + ch]) - r0[k0 + ch]);
-          const float bot = r1[k0 + ch] + a * (static_cast<float>(r1[k1 + ch]) - r1[k0 + ch]);
-          out[u * nc + ch] = static_cast<uchar>(top + b * (bot - top) + 0.5f);
-        }
+      if (nc == 1) {
+        bilinearRow<1>(r0, r1, b, tw, out);
+      } else {
+        bilinearRow<3>(r0, r1, b, tw, out);
+      }
+    }
+  }
+
+  template <int NC>
+  void bilinearRow(const uchar* r0, const uchar* r1, float b, int width, uchar* out) const {
+    for (int u = 0; u < width; ++u) {
+      const float a = col_a[u];
+      const int k0 = col_i0[u], k1 = col_i1[u];
+      for (int ch = 0; ch < NC; ++ch) {
+        const float top = r0[k0 + ch] + a * (static_cast<float>(r0[k1 + ch]) - r0[k0 + ch]);
+        const float bot = r1[k0 + ch] + a * (static_cast<float>(r1[k1 + ch]) - r1[k0 + ch]);
+        out[u * NC + ch] = static_cast<uchar>(top + b * (bot - top) + 0.5f);
       }
     }
   }

@@ -46,7 +46,7 @@ class FhogExtractor {
   std::vector<float> energy_; // rows x cols: sum over 9 of (h[o] + h[o+9])^2
   std::vector<float> grey_;   // rows x cols grey sums
   // Per-column tables and per-row scratch (see compute()).
-  std::vector<int> col_left_, col_right_, col_cell_;
+  std::vector<int> col_cell_;
   std::vector<float> col_w0_;
   std::vector<float> row_dx_, row_dy_, row_m2_, row_bin_;
 };
