@@ -404,14 +404,21 @@ Sequence::Sequence(const std::string& path, const std::string& ground_truth_path
     }
     const double f = video_->cap.get(cv::CAP_PROP_FPS);
     const fs::path scene_dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
-    const double fs_fps = fpsFromFolder(scene_dir);
+    double fs_fps = 0.0;
+    {
+      // generate_scene writes <stem>_scene.yaml beside a video.
+      std::error_code ec2;
+      const fs::path side = scene_dir / (p.stem().string() + "_scene.yaml");
+      if (fs::is_regular_file(side, ec2)) fs_fps = parseFpsText(readText(side));
+      if (fs_fps <= 0.0) fs_fps = fpsFromFolder(scene_dir);
+    }
     fps_ = (std::isfinite(f) && f > 0.0 && f < 1000.0) ? f : (fs_fps > 0.0 ? fs_fps : 30.0);
     const double n = video_->cap.get(cv::CAP_PROP_FRAME_COUNT);
     frame_count_ = (std::isfinite(n) && n > 0.0) ? static_cast<int>(n) : 0;
     if (gt_file.empty()) {
       const fs::path dir = p.parent_path();
-      for (const std::string& n2 :
-           {p.stem().string() + ".txt", p.stem().string() + "_gt.txt", std::string("groundtruth_rect.txt")}) {
+      for (const std::string& n2 : {p.stem().string() + "_groundtruth_rect.txt", p.stem().string() + ".txt",
+                                    p.stem().string() + "_gt.txt", std::string("groundtruth_rect.txt")}) {
         if (fs::is_regular_file(dir / n2, ec)) {
           gt_file = (dir / n2).string();
           break;

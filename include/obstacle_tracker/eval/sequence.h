@@ -84,8 +84,8 @@ class Sequence {
   // path: an OTB folder (an `img/` subfolder of images, or images directly, plus
   // groundtruth_rect.txt / groundtruth.txt), a folder of images (sorted by name, numbers in names
   // compared as numbers), or a video file. ground_truth_path overrides the ground-truth file;
-  // for a video without it, `<video stem>.txt`, `<video stem>_gt.txt` or `groundtruth_rect.txt`
-  // next to the video is used when present. Throws std::runtime_error naming the path when it
+  // for a video without it, `<stem>_groundtruth_rect.txt` (generate_scene), `<stem>.txt`,
+  // `<stem>_gt.txt` or `groundtruth_rect.txt` next to the video is used when present. Throws std::runtime_error naming the path when it
   // cannot be opened, holds no image, or the ground truth cannot be parsed.
   explicit Sequence(const std::string& path, const std::string& ground_truth_path = "");
   ~Sequence();
@@ -100,8 +100,9 @@ class Sequence {
   // read() may end earlier or later).
   int frameCount() const { return frame_count_; }
 
-  // Frames per second: the video's, or a `fps` entry in scene.yaml / scene.yml / scene.txt /
-  // fps.txt inside the folder (written by generate_scene), else 30 (the OTB convention).
+  // Frames per second: the video's (else a `fps` entry in `<stem>_scene.yaml` beside it), or a
+  // `fps` entry in scene.yaml / scene.yml / scene.txt / fps.txt inside the folder (written by
+  // generate_scene), else 30 (the OTB convention).
   double fps() const { return fps_; }
 
   // Ground truth (empty when there is none). Boxes past its end count as absent.
