@@ -78,6 +78,16 @@ float confidenceOf(float peak, float psr) {
   return std::sqrt(c_peak * c_psr);
 }
 
+inline void clampField(double& v, double def, double lo, double hi) {
+  if (std::isnan(v)) v = def;
+  v = std::min(hi, std::max(lo, v));
+}
+inline void clampField(int& v, double def, double lo, double hi) {
+  (void)def;
+  v = std::min(static_cast<int>(hi), std::max(static_cast<int>(lo), v));
+}
+inline void clampField(bool& v, double, double, double) { (void)v; }
+
 }  // namespace
 
 struct KcfTracker::Impl {
@@ -145,9 +155,14 @@ struct KcfTracker::Impl {
 
   explicit Impl(const Params& p) { setParams(p); }
 
+  // Same clamping as core::validate (NaN -> default, out of range -> nearest bound), written
+  // against the parameter list directly so it allocates nothing: the pipeline may change
+  // thresholds every frame.
   void setParams(const Params& p) {
     params = p;
-    validate(params);
+#define OT_KCF_CLAMP_(type, name, def, lo, hi, unit, doc) clampField(params.name, def, lo, hi);
+    OT_PARAMS(OT_KCF_CLAMP_)
+#undef OT_KCF_CLAMP_
   }
 
   // Frame window (centre c, size ws) -> template patch (tw x th), bilinear, border replication.

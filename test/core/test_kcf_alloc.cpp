@@ -106,6 +106,9 @@ TEST(KcfAllocation, NoHeapAllocationPerFrameAfterInit) {
     g_allocations = 0;
     g_counting = true;
     for (int i = 4; i < 24; ++i) {
+      oc::Params q = p;
+      q.learn_threshold = 0.3 + 0.01 * i;  // as the pipeline does when it moves its gate
+      kcf.setParams(q);
       if (i % 3 == 0) {
         kcf.detect(frames[i]);
         kcf.learn(frames[i]);

@@ -52,7 +52,8 @@ class KcfTracker {
   KcfTracker(KcfTracker&&) noexcept;
   KcfTracker& operator=(KcfTracker&&) noexcept;
 
-  // Takes effect at the next init (filter geometry) or update (rates, thresholds).
+  // Takes effect at the next init (filter geometry) or update (rates, thresholds). Values are
+  // clamped as core::validate does; no allocation, so it may be called every frame.
   void setParams(const Params& params);
 
   // Starts (or restarts) the filter on box. frame: CV_8UC1 or CV_8UC3 (BGR).
