@@ -28,6 +28,7 @@ constexpr int kChannels = FhogExtractor::kChannels;
 constexpr int kPsrExclusion = 5;  // sidelobe excludes the 11x11 cells around the peak (MOSSE)
 constexpr int kMinCells = 8;        // smallest side of the cell grid
 constexpr float kMaxWindowAspect = 2.0f;  // longer / shorter side of the filter window, at most
+constexpr float kSmallTarget = 32.0f;     // sqrt(w * h) below which the window is square
 constexpr float kMinTargetSide = 4.0f;    // scale search never shrinks a side below this (px)
 constexpr float kMaxPsr = 100.0f;
 constexpr float kScaleModelArea = 512.0f;  // DSST's scale model size (32 x 16 px)
@@ -323,8 +324,11 @@ struct KcfTracker::Impl {
     float wh = std::max(box.height * pad, min_win);
     // Keep the window's aspect within 1:kMaxWindowAspect so a thin target still has context
     // (and enough cells) along its short side.
-    ww = std::max(ww, wh / kMaxWindowAspect);
-    wh = std::max(wh, ww / kMaxWindowAspect);
+    // Small targets get a square window: their motion is large against their short side.
+    const float max_aspect =
+        std::sqrt(box.width * box.height) < kSmallTarget ? 1.0f : kMaxWindowAspect;
+    ww = std::max(ww, wh / max_aspect);
+    wh = std::max(wh, ww / max_aspect);
     const float longer = std::max(ww, wh);
     const int long_cells =
         cv::getOptimalDFTSize(std::max(kMinCells, static_cast<int>(std::lround(
