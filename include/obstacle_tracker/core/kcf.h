@@ -39,8 +39,8 @@ class KcfTracker {
   struct Impl;
 
   // Calibrated on the 10 dev clips (README "Tracker (KCF)"): frames tracked within 20 px have
-  // peak >= 0.18 and PSR >= 15 in 95 % of cases; at the onset of a failure peak ~0.08-0.16 and
-  // PSR ~6-12.
+  // peak >= 0.15 and PSR >= 12 in 95 % of cases (confidence >= 0.48); at the onset of a failure
+  // peak ~0.05-0.13 and PSR ~5-11 (confidence <= 0.38).
   static constexpr float kConfidencePeakFull = 0.35f;
   static constexpr float kConfidencePsrZero = 5.0f;
   static constexpr float kConfidencePsrFull = 20.0f;
