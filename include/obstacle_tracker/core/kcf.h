@@ -63,7 +63,10 @@ class KcfTracker {
   KcfResult update(const cv::Mat& frame);
 
   // Correlates the current model at a candidate box without changing any state (to verify a
-  // re-detection candidate against the model).
+  // re-detection candidate against the model). The window is the model's, centred on the
+  // candidate and scaled by sqrt(candidate area / current box area) (the model's aspect is kept);
+  // the result's box has the candidate's size, moved to the response peak; scale_change is that
+  // scale; model_updated is false.
   KcfResult evaluate(const cv::Mat& frame, const cv::Rect2f& candidate);
 
   // For callers that gate learning themselves (e.g. against running means of peak and PSR):
