@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 
@@ -26,8 +27,19 @@ std::string joined(const std::vector<std::string>& names) {
   return out;
 }
 
+// Element-wise equality where NaN equals NaN: an unchanged camera_info full of NaN must compare
+// equal to itself, or it is re-validated and re-logged on every frame.
+template <typename Array>
+bool sameValues(const Array& a, const Array& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (!(a[i] == b[i] || (std::isnan(a[i]) && std::isnan(b[i])))) return false;
+  }
+  return true;
+}
+
 bool sameCalibration(const sensor_msgs::CameraInfo& a, const sensor_msgs::CameraInfo& b) {
-  return a.width == b.width && a.height == b.height && a.K == b.K && a.D == b.D &&
+  return a.width == b.width && a.height == b.height && sameValues(a.K, b.K) && sameValues(a.D, b.D) &&
          a.distortion_model == b.distortion_model && a.binning_x == b.binning_x &&
          a.binning_y == b.binning_y && a.roi.x_offset == b.roi.x_offset &&
          a.roi.y_offset == b.roi.y_offset && a.roi.width == b.roi.width && a.roi.height == b.roi.height;
@@ -166,17 +178,29 @@ void ObstacleTrackerNodelet::countInput(const sensor_msgs::ImageConstPtr& image)
 }
 
 void ObstacleTrackerNodelet::imageCallback(const sensor_msgs::ImageConstPtr& image) {
-  countInput(image);
-  process(image, sensor_msgs::CameraInfoConstPtr());
+  try {
+    countInput(image);
+    process(image, sensor_msgs::CameraInfoConstPtr());
+  } catch (const std::exception& e) {  // process() catches its own; this guards the locking
+    NODELET_ERROR_THROTTLE(5.0, "image callback: %s", e.what());
+  } catch (...) {
+    NODELET_ERROR_THROTTLE(5.0, "image callback: unknown error");
+  }
 }
 
 void ObstacleTrackerNodelet::imageInfoCallback(const sensor_msgs::ImageConstPtr& image,
                                                const sensor_msgs::CameraInfoConstPtr& info) {
-  {
-    std::lock_guard<std::mutex> lock(stats_mutex_);
-    unsynced_since_pair_ = 0;
+  try {
+    {
+      std::lock_guard<std::mutex> lock(stats_mutex_);
+      unsynced_since_pair_ = 0;
+    }
+    process(image, info);
+  } catch (const std::exception& e) {
+    NODELET_ERROR_THROTTLE(5.0, "image + camera_info callback: %s", e.what());
+  } catch (...) {
+    NODELET_ERROR_THROTTLE(5.0, "image + camera_info callback: unknown error");
   }
-  process(image, info);
 }
 
 void ObstacleTrackerNodelet::process(const sensor_msgs::ImageConstPtr& image,
@@ -255,7 +279,8 @@ void ObstacleTrackerNodelet::process(const sensor_msgs::ImageConstPtr& image,
       debug_pub_.publish(cv_bridge::CvImage(image->header, "bgr8", overlay_).toImageMsg());
     }
 
-    const double latency = image->header.stamp.isZero() ? 0.0 : (ros::Time::now() - image->header.stamp).toSec();
+    // In double: ros::Time subtraction throws when the stamp is decades away (a bad clock).
+    const double latency = image->header.stamp.isZero() ? 0.0 : ros::Time::now().toSec() - image->header.stamp.toSec();
     std::lock_guard<std::mutex> lock(stats_mutex_);
     for (Window* w : {&window_, &total_}) {
       ++w->processed;

@@ -38,7 +38,7 @@ LAUNCH=$!
 
 status=1
 green=0
-for attempt in $(seq 1 20); do
+for attempt in $(seq 1 40); do
   sleep 3
   if ! kill -0 "$LAUNCH" 2>/dev/null; then
     echo "roslaunch ended early; log:"; tail -30 "$LOG"
@@ -59,7 +59,7 @@ wait "$LAUNCH" 2>/dev/null
 if [ $status -eq 0 ]; then
   echo "PASSED: rviz shows the overlay box ($green green pixels), screenshot $SHOT"
 else
-  echo "FAILED: no overlay box in rviz's window after 60 s (last screenshot $SHOT, log $LOG)"
+  echo "FAILED: no overlay box in rviz's window after 120 s (last screenshot $SHOT, log $LOG)"
   tail -20 "$LOG"
 fi
 exit $status
