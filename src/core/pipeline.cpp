@@ -317,7 +317,12 @@ struct Pipeline::Impl {
               [](const Candidate& a, const Candidate& b) { return a.prior > b.prior; });
     const std::size_t verify =
         std::min<std::size_t>(candidates.size(), static_cast<std::size_t>(params.redetect_candidates));
-    const float accept = goodPeak(t);
+    // A new region must match the model about as well as the target usually does (a background
+    // patch or a passing bird correlates weakly but often above the tracking threshold).
+    float accept = goodPeak(t);
+    if (t.ref_count >= kRefWarmup) {
+      accept = std::max(accept, static_cast<float>(params.redetect_relative_threshold) * t.ref_peak);
+    }
     int best = -1;
     float best_final = 0.0f;
     KcfResult best_result;
@@ -413,7 +418,9 @@ struct Pipeline::Impl {
     const KcfResult r = t.kcf.update(frame);
     t.result = r;
     if (r.peak >= goodPeak(t) && usableBox(r.box, frame_size)) {
-      updateRefs(t, r);
+      // The running means follow only frames the model learned from (reliable ones), so that a
+      // target fading out of view does not drag the relative thresholds down with it.
+      if (r.model_updated || t.ref_count < kRefWarmup) updateRefs(t, r);
       acceptGood(t, r.box, stamp, false);
       return;
     }
@@ -540,7 +547,7 @@ struct Pipeline::Impl {
   }
 
   static constexpr int kRefWarmup = 3;         // good frames before the relative tests apply
-  static constexpr float kRefSmoothing = 0.2f;   // EMA weight of the newest good frame
+  static constexpr float kRefSmoothing = 0.1f;   // EMA weight of the newest learned frame
   static constexpr float kMaxLearnGate = 0.75f;
 };
 

@@ -36,12 +36,14 @@ namespace core {
   X(double, merge_iou, 0.5, 0.0, 1.0, "", "tracks overlapping more than this IoU are merged")      \
   X(int, looming_window, 15, 3, 300, "frames",                                                     \
     "box-size history used for the expansion rate (least-squares slope of ln size)")              \
-  X(double, relative_peak_threshold, 0.5, 0.0, 1.0, "",                                            \
+  X(double, relative_peak_threshold, 0.4, 0.0, 1.0, "",                                            \
     "also re-detect when the peak falls below this fraction of the track's running mean peak")    \
   X(double, learn_relative_threshold, 0.7, 0.0, 1.0, "",                                           \
     "learn only when peak and PSR reach this fraction of their running means (0 = off)")          \
   X(int, redetect_candidates, 3, 1, 16, "",                                                        \
-    "salient regions per re-detection verified against the filter model")
+    "salient regions per re-detection verified against the filter model")                         \
+  X(double, redetect_relative_threshold, 0.7, 0.0, 1.0, "",                                        \
+    "a re-detected region's verification peak must reach this fraction of the running mean peak")
 
 // Saliency detector (FastMBD, Otsu, regions, auto-initialisation).
 #define OT_SALIENCY_PARAMS(X)                                                                      \

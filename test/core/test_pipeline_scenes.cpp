@@ -1,0 +1,184 @@
+// Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
+//
+// Sequence regressions of the closed loop on generated flight scenes (include/obstacle_tracker/
+// scene), with numeric bars on OTB precision (20 px) and success AUC. The bars sit a little under
+// the values measured when they were set (printed by each test), so that a regression fails.
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "obstacle_tracker/core/pipeline.h"
+#include "obstacle_tracker/eval/metrics.h"
+#include "obstacle_tracker/eval/sequence.h"
+#include "obstacle_tracker/scene/scene_generator.h"
+
+namespace core = obstacle_tracker::core;
+namespace eval = obstacle_tracker::eval;
+namespace scene = obstacle_tracker::scene;
+
+namespace {
+
+struct SceneRun {
+  eval::OtbScores scores;
+  std::vector<std::vector<core::Obstacle>> frames;  // every frame's output
+  std::vector<scene::FrameTruth> truth;
+};
+
+// Runs the pipeline over a generated scene; gt_start: start from the first visible main box.
+SceneRun runScene(const std::string& name, int frames, bool gt_start, const core::Params& params = core::Params(),
+             cv::Size size = cv::Size(480, 360), bool mono16 = false) {
+  scene::SceneGenerator gen = scene::makeScenario(name, 3, frames, size, mono16);
+  core::Pipeline pipeline(params);
+  eval::FrameConverter converter(0.5, 99.95, 0.2);
+  SceneRun run;
+  std::vector<cv::Rect2f> predicted, gt;
+  cv::Mat raw;
+  bool started = !gt_start;
+  for (int i = 0; i < gen.frameCount(); ++i) {
+    scene::FrameTruth truth;
+    gen.renderFrame(i, raw, &truth);
+    const cv::Mat& frame = converter.convert(raw);
+    const scene::ObstacleTruth* main = truth.find(1);
+    const cv::Rect2f main_box = (main != nullptr && main->visible) ? main->box : cv::Rect2f();
+    const double stamp = i / gen.fps();
+    std::vector<core::Obstacle> out;
+    if (!started) {
+      if (eval::isPresent(main_box)) {
+        out = pipeline.startTrack(frame, stamp, main_box);
+        started = true;
+      }
+    } else {
+      out = pipeline.process(frame, stamp);
+    }
+    cv::Rect2f best;
+    for (const auto& o : out) {
+      if (o.state == core::TrackState::kTracking || o.state == core::TrackState::kRedetecting) {
+        best = o.box;
+        break;
+      }
+    }
+    predicted.push_back(best);
+    gt.push_back(main_box);
+    run.frames.push_back(out);
+    run.truth.push_back(truth);
+  }
+  run.scores = eval::otbScores(predicted, gt);
+  std::printf("[ scene    ] %-28s %s: precision %.3f  AUC %.3f  (%d frames)\n", name.c_str(),
+              gt_start ? "gt  " : "auto", run.scores.precision20, run.scores.auc, run.scores.frames);
+  return run;
+}
+
+}  // namespace
+
+TEST(PipelineScenes, DemoFromGroundTruth) {
+  const SceneRun r = runScene("demo", 150, true);
+  EXPECT_GE(r.scores.precision20, 0.90);
+  EXPECT_GE(r.scores.auc, 0.42);
+}
+
+TEST(PipelineScenes, CrossingAutoInit) {
+  // No ground truth used: the pipeline finds the aircraft itself.
+  const SceneRun r = runScene("crossing", 150, false);
+  EXPECT_GE(r.scores.precision20, 0.85);
+  EXPECT_GE(r.scores.auc, 0.28);
+}
+
+TEST(PipelineScenes, CrossingWithJerks) {
+  const SceneRun r = runScene("crossing+jerk", 150, true);
+  EXPECT_GE(r.scores.precision20, 0.85);
+  EXPECT_GE(r.scores.auc, 0.50);
+}
+
+TEST(PipelineScenes, CloudOcclusion) {
+  // Measured 0.60 / 0.43: the box stays on the cloud edge for a while before the re-detection
+  // brings it back; a regression bar, not a goal.
+  const SceneRun r = runScene("crossing+occlusion", 150, true);
+  EXPECT_GE(r.scores.precision20, 0.50);
+  EXPECT_GE(r.scores.auc, 0.35);
+}
+
+TEST(PipelineScenes, OutOfViewNoStaleBox) {
+  core::Params params;
+  params.max_redetect_failures = 10;
+  const SceneRun r = runScene("out_of_view", 240, true, params);
+  // While the obstacle is out of the frame, nothing is reported as tracking for longer than the
+  // re-detection allows (frames out of view, minus max_redetect_failures + 1).
+  int out_of_view = 0, tracking_while_out = 0;
+  for (std::size_t i = 0; i < r.truth.size(); ++i) {
+    const scene::ObstacleTruth* m = r.truth[i].find(1);
+    if (m == nullptr || !m->visible) {
+      ++out_of_view;
+      for (const auto& o : r.frames[i]) tracking_while_out += o.state == core::TrackState::kTracking ? 1 : 0;
+    }
+  }
+  std::printf("[ scene    ] out_of_view: %d frames out of view, %d tracking reports then\n", out_of_view,
+              tracking_while_out);
+  EXPECT_GT(out_of_view, 0);
+  EXPECT_LE(tracking_while_out, out_of_view / 4);
+  EXPECT_GE(r.scores.precision20, 0.60);
+}
+
+TEST(PipelineScenes, ApproachTimeToContact) {
+  // approach: s = s0 * T / (T - t); the scene's truth carries the time to contact per frame.
+  // The looming estimator itself is exact on such sizes (test_looming); end to end the box must
+  // grow with the obstacle, and the filter's scale search lags a fast approach (measured: the box
+  // grows 2.2x while the obstacle grows 6x), so this checks that the loop reports a closing
+  // obstacle with a finite time to contact near the end, and prints the accuracy.
+  const SceneRun r = runScene("approach", 120, true);
+  EXPECT_GE(r.scores.precision20, 0.90);
+  int checked = 0, closing = 0, within50 = 0;
+  for (std::size_t i = r.truth.size() - 30; i < r.truth.size(); ++i) {
+    const scene::ObstacleTruth* m = r.truth[i].find(1);
+    if (m == nullptr || !std::isfinite(m->time_to_contact) || r.frames[i].empty()) continue;
+    ++checked;
+    const double ttc = r.frames[i][0].time_to_contact;
+    closing += std::isfinite(ttc) && r.frames[i][0].expansion_rate > 0.0 ? 1 : 0;
+    within50 += std::abs(ttc - m->time_to_contact) <= 0.5 * m->time_to_contact ? 1 : 0;
+  }
+  std::printf("[ scene    ] approach, last 30 frames: closing with a finite time to contact on %d, "
+              "within 50 %% of the truth on %d of %d\n", closing, within50, checked);
+  ASSERT_GT(checked, 20);
+  EXPECT_GE(closing, static_cast<int>(0.7 * checked));
+  const cv::Rect2f first = r.frames.front().at(0).box, last = r.frames.back().at(0).box;
+  EXPECT_GT(last.area(), 2.0f * first.area());
+}
+
+TEST(PipelineScenes, ThreeObstaclesKeepTheirIds) {
+  core::Params params;
+  params.max_obstacles = 3;
+  scene::SceneGenerator gen = scene::makeScenario("multi", 3, 150, cv::Size(480, 360));
+  core::Pipeline pipeline(params);
+  cv::Mat frame;
+  scene::FrameTruth truth;
+  gen.renderFrame(0, frame, &truth);
+  // Start one track per visible target; remember which id follows which obstacle.
+  std::vector<std::pair<int, int>> id_of;  // (track id, truth id)
+  for (const auto& t : truth.obstacles) {
+    if (t.distractor || !t.visible) continue;
+    const auto& out = pipeline.startTrack(frame, 0.0, t.box);
+    int newest = -1;
+    for (const auto& o : out) newest = std::max(newest, o.id);
+    id_of.emplace_back(newest, t.id);
+  }
+  ASSERT_GE(id_of.size(), 2u);
+  int checks = 0, good = 0;
+  for (int i = 1; i < gen.frameCount(); ++i) {
+    gen.renderFrame(i, frame, &truth);
+    const auto& out = pipeline.process(frame, i / gen.fps());
+    for (const auto& [track_id, truth_id] : id_of) {
+      const scene::ObstacleTruth* t = truth.find(truth_id);
+      if (t == nullptr || t->visible_fraction < 0.8f) continue;  // hidden: ids may not be checked
+      for (const auto& o : out) {
+        if (o.id != track_id || o.state != core::TrackState::kTracking) continue;
+        ++checks;
+        good += eval::centreError(o.box, t->box) <= 20.0 ? 1 : 0;
+      }
+    }
+  }
+  std::printf("[ scene    ] multi: %d of %d tracking reports on the obstacle their id started on\n", good, checks);
+  ASSERT_GT(checks, 50);
+  EXPECT_GE(good, static_cast<int>(0.85 * checks));
+}
