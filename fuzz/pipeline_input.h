@@ -144,18 +144,19 @@ inline PipelineRunResult runPipelineInput(const std::uint8_t* data, std::size_t 
     try {
       if (op & 64) {
         cv::Rect2f box(in.f32(), in.f32(), in.f32(), in.f32());
-        bool badBox = !std::isfinite(box.x) || !std::isfinite(box.y) ||
-                      !std::isfinite(box.width) || !std::isfinite(box.height) ||
-                      box.width <= 0.0f || box.height <= 0.0f;
+        // pipeline.h: the box must be finite, at least 1 x 1 px and overlap the frame.
+        const bool badBox = !std::isfinite(box.x) || !std::isfinite(box.y) ||
+                            !std::isfinite(box.width) || !std::isfinite(box.height) ||
+                            box.width < 1.0f || box.height < 1.0f ||
+                            (box & cv::Rect2f(0.0f, 0.0f, static_cast<float>(width),
+                                              static_cast<float>(height))).area() <= 0.0f;
+        deliberatelyBad = deliberatelyBad || badBox;
         result.violation = checkObstacles(pipeline.startTrack(frame, stamp, box));
-        (void)badBox;
       } else {
         result.violation = checkObstacles(pipeline.process(frame, stamp));
       }
     } catch (const std::invalid_argument& e) {
-      bool allowed = deliberatelyBad;
-      if (op & 64) allowed = true;  // refined below once the box rules are settled
-      if (!allowed) {
+      if (!deliberatelyBad) {
         result.violation = std::string("std::invalid_argument on a valid frame: ") + e.what();
       }
       if (std::string(e.what()).empty()) result.violation = "std::invalid_argument without a message";

@@ -59,6 +59,13 @@ void checkBox(const cv::Mat& frame, const cv::Rect2f& box, const char* who) {
   if ((box & frame_rect).area() <= 0.0f) {
     throw std::invalid_argument(std::string(who) + ": box does not overlap the frame");
   }
+  // The filter window (box x (1 + padding)) is resampled with int pixel arithmetic: a box
+  // billions of pixels wide overflowed it (test_robust_pipeline, issue 6). A target can be larger
+  // than the frame when very close, but not kMaxBoxToFrame times larger.
+  constexpr float kMaxBoxToFrame = 16.0f;
+  if (box.width > kMaxBoxToFrame * frame.cols || box.height > kMaxBoxToFrame * frame.rows) {
+    throw std::invalid_argument(std::string(who) + ": box is more than 16 times the frame's size");
+  }
 }
 
 // Interleaved complex (CV_32FC2) element-wise helpers on buffers of the same size.
