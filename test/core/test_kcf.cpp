@@ -301,6 +301,7 @@ TEST(Kcf, BadInputThrowsInvalidArgument) {
   EXPECT_THROW(kcf.init(frame, cv::Rect2f(10, 10, std::numeric_limits<float>::infinity(), 20)),
                std::invalid_argument);
   EXPECT_THROW(kcf.init(frame, cv::Rect2f(200, 200, 20, 20)), std::invalid_argument);
+  EXPECT_THROW(kcf.init(frame, cv::Rect2f(0, 0, 3.0e9f, 20)), std::invalid_argument);
   EXPECT_FALSE(kcf.initialized());
   kcf.init(frame, cv::Rect2f(10, 10, 20, 20));  // a flat frame is legal
   EXPECT_TRUE(kcf.initialized());
@@ -367,5 +368,53 @@ TEST(Kcf, ConfidenceMappingIsMonotoneAndBounded) {
     EXPECT_GE(c, 0.0f);
     EXPECT_LE(c, 1.0f);
     last = c;
+  }
+}
+
+TEST(Kcf, RandomFramesAndBoxesNeverBreakIt) {
+  // Deterministic random sweep over frame sizes (down to 1x1), types, boxes (tiny, huge, partly
+  // outside) and parameters: every call either works with finite outputs or throws
+  // std::invalid_argument for a box that misses the frame or is over 16 times its size.
+  cv::RNG rng(2026);
+  for (int it = 0; it < 150; ++it) {
+    const int fw = rng.uniform(1, 200), fh = rng.uniform(1, 160);
+    const int type = rng.uniform(0, 2) ? CV_8UC3 : CV_8UC1;
+    cv::Mat frame(fh, fw, type);
+    rng.fill(frame, cv::RNG::UNIFORM, 0, 256);
+    oc::Params p;
+    p.kcf_template_size = rng.uniform(32, 129);
+    p.kcf_cell_size = rng.uniform(1, 9);
+    p.kcf_padding = rng.uniform(0.0, 3.0);
+    p.scale_count = rng.uniform(1, 8);
+    p.kcf_scale_filter = rng.uniform(0, 2) != 0;
+    oc::KcfTracker kcf(p);
+    const cv::Rect2f box(static_cast<float>(rng.uniform(-50.0, fw + 10.0)),
+                         static_cast<float>(rng.uniform(-50.0, fh + 10.0)),
+                         static_cast<float>(rng.uniform(1.0, 400.0)),
+                         static_cast<float>(rng.uniform(1.0, 300.0)));
+    try {
+      kcf.init(frame, box);
+    } catch (const std::invalid_argument& e) {
+      const cv::Rect2f fr(0, 0, static_cast<float>(fw), static_cast<float>(fh));
+      const bool misses = (box & fr).area() <= 0.0f;
+      const bool huge = box.width > 16.0f * fw || box.height > 16.0f * fh;
+      EXPECT_TRUE(misses || huge) << "init refused a legal box: " << e.what();
+      continue;
+    }
+    for (int k = 0; k < 3; ++k) {
+      cv::Mat next(fh, fw, type);
+      rng.fill(next, cv::RNG::UNIFORM, 0, 256);
+      const oc::KcfResult r = kcf.update(next);
+      ASSERT_TRUE(std::isfinite(r.box.x) && std::isfinite(r.box.y) && std::isfinite(r.box.width) &&
+                  std::isfinite(r.box.height) && std::isfinite(r.peak) && std::isfinite(r.psr))
+          << "iteration " << it;
+      EXPECT_GE(r.confidence, 0.0f);
+      EXPECT_LE(r.confidence, 1.0f);
+      EXPECT_GT(r.box.width, 0.0f);
+      EXPECT_GT(r.box.height, 0.0f);
+      const oc::KcfResult e = kcf.evaluate(next, cv::Rect2f(0, 0, static_cast<float>(fw),
+                                                            static_cast<float>(fh)));
+      EXPECT_TRUE(std::isfinite(e.peak) && std::isfinite(e.box.x));
+    }
   }
 }

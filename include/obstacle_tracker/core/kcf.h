@@ -32,7 +32,8 @@ struct KcfResult {
 // the pipeline re-detects when the raw peak < Params::peak_threshold (the paper's test).
 //
 // Bad input (empty frame, a type other than CV_8UC1/CV_8UC3, a box that is not finite, smaller
-// than 1x1 px or outside the frame) throws std::invalid_argument; update/evaluate before init
+// than 1x1 px, outside the frame or more than 16 times the frame's width or height) throws
+// std::invalid_argument; update/evaluate before init
 // throw std::logic_error. Parameters are clamped into their ranges (core::validate).
 class KcfTracker {
  public:
