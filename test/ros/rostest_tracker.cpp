@@ -7,6 +7,7 @@
 //   ~image_topic, ~info_topic, ~use_camera_info   what to publish
 //   ~frames       images for the one-output-per-image case
 //   ~target_frame when set, bearings are checked in it (the .test publishes base_link <- optical)
+//   ~rosout_publishers  /rosout publishers to wait for (this node, the manager, the loader, ...)
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -40,6 +41,7 @@ class Harness {
     pnh_.param("use_camera_info", use_info_, false);
     pnh_.param("frames", frames_, 30);
     pnh_.param("target_frame", target_frame_, std::string());
+    pnh_.param("rosout_publishers", rosout_publishers_, 2);
     image_pub_ = nh_.advertise<sensor_msgs::Image>(image_topic_, 5);
     if (use_info_) info_pub_ = nh_.advertise<sensor_msgs::CameraInfo>(info_topic_, 5);
     echo_sub_ = nh_.subscribe(image_topic_, 50, &Harness::onEcho, this);
@@ -60,7 +62,8 @@ class Harness {
       // The tracker and our own echo subscribe the image; the tracker publishes obstacles.
       const bool images = image_pub_.getNumSubscribers() >= 2;
       const bool info = !use_info_ || info_pub_.getNumSubscribers() >= 1;
-      if (images && info && obstacles_sub_.getNumPublishers() >= 1 && rosout_sub_.getNumPublishers() >= 2) {
+      if (images && info && obstacles_sub_.getNumPublishers() >= 1 &&
+          rosout_sub_.getNumPublishers() >= static_cast<std::uint32_t>(rosout_publishers_)) {
         ros::WallDuration(0.3).sleep();  // let the last handshakes settle
         return true;
       }
@@ -110,6 +113,7 @@ class Harness {
   std::string tracker_, manager_, image_topic_, info_topic_, target_frame_;
   bool use_info_ = false;
   int frames_ = 30;
+  int rosout_publishers_ = 2;  // nodes whose /rosout we must hear before logging matters
   ros::Publisher image_pub_, info_pub_;
   ros::Subscriber echo_sub_, obstacles_sub_, rosout_sub_, diag_sub_;
   std::mutex mutex_;
