@@ -23,6 +23,7 @@ set(OT_ACCURACY_SEQUENCE "antiuav_ir_35" CACHE STRING "shared sequence replayed 
 set(OT_ACCURACY_SEQUENCE_FRAMES 300 CACHE STRING "frames of the shared sequence put in the bag")
 # Bars (OTB precision at 20 px / success AUC of the nodelet's best obstacle, auto-initialised).
 set(OT_ACCURACY_SCENE_BARS min_precision20:=0.80 min_auc:=0.40)
+set(OT_ACCURACY_SCENE_720_BARS min_precision20:=0.80 min_auc:=0.40)
 set(OT_ACCURACY_REAL_BARS min_precision20:=0.7 min_auc:=0.35)
 
 set(OT_ACCURACY_PYTHONPATH ${CATKIN_DEVEL_PREFIX}/${CATKIN_GLOBAL_PYTHON_DESTINATION})
@@ -30,20 +31,30 @@ set(OT_TO_BAG ${PROJECT_SOURCE_DIR}/scripts/sequence_to_bag.py)
 set(OT_TO_BAG_DEPS ${OT_TO_BAG} ${PROJECT_SOURCE_DIR}/scripts/otb_metrics.py
   ${PROJECT_NAME}_generate_messages_py)
 
-# Rewritten only when the choice changes, so that a new choice remakes the bag.
-file(CONFIGURE OUTPUT ${OT_ACCURACY_DIR}/scene.cfg
-  CONTENT "${OT_ACCURACY_SCENE} ${OT_ACCURACY_SCENE_SEED} ${OT_ACCURACY_SCENE_SIZE}\n")
-add_custom_command(OUTPUT ${OT_ACCURACY_DIR}/scene.bag
-  COMMAND ${CMAKE_COMMAND} -E remove_directory ${OT_ACCURACY_DIR}/scene
-  COMMAND $<TARGET_FILE:generate_scene> --scenario ${OT_ACCURACY_SCENE} --seed ${OT_ACCURACY_SCENE_SEED}
-          --frames 150 --size ${OT_ACCURACY_SCENE_SIZE} --quiet --out ${OT_ACCURACY_DIR}/scene
-  COMMAND ${CMAKE_COMMAND} -E env PYTHONPATH=${OT_ACCURACY_PYTHONPATH}
-          /usr/bin/python3 ${OT_TO_BAG} ${OT_ACCURACY_DIR}/scene ${OT_ACCURACY_DIR}/scene.bag
-          --frame-id camera_optical --quiet
-  DEPENDS generate_scene ${OT_TO_BAG_DEPS} ${OT_ACCURACY_DIR}/scene.cfg
-  COMMENT "accuracy rostest: scene ${OT_ACCURACY_SCENE} -> accuracy/scene.bag"
-  VERBATIM)
-set(OT_ACCURACY_BAGS ${OT_ACCURACY_DIR}/scene.bag)
+# One bag per size: the accuracy size, and 1280x720 (30 Hz) for the latency at HD. Each config
+# file is rewritten only when the choice changes, so that a new choice remakes the bag.
+set(OT_ACCURACY_BAGS)
+foreach(variant scene scene_720)
+  if(variant STREQUAL "scene")
+    set(size ${OT_ACCURACY_SCENE_SIZE})
+  else()
+    set(size 1280x720)
+  endif()
+  file(CONFIGURE OUTPUT ${OT_ACCURACY_DIR}/${variant}.cfg
+    CONTENT "${OT_ACCURACY_SCENE} ${OT_ACCURACY_SCENE_SEED} ${size}\n")
+  add_custom_command(OUTPUT ${OT_ACCURACY_DIR}/${variant}.bag
+    COMMAND ${CMAKE_COMMAND} -E remove_directory ${OT_ACCURACY_DIR}/${variant}
+    COMMAND $<TARGET_FILE:generate_scene> --scenario ${OT_ACCURACY_SCENE} --seed ${OT_ACCURACY_SCENE_SEED}
+            --frames 150 --size ${size} --quiet --out ${OT_ACCURACY_DIR}/${variant}
+    COMMAND ${CMAKE_COMMAND} -E env PYTHONPATH=${OT_ACCURACY_PYTHONPATH}
+            /usr/bin/python3 ${OT_TO_BAG} ${OT_ACCURACY_DIR}/${variant} ${OT_ACCURACY_DIR}/${variant}.bag
+            --frame-id camera_optical --quiet
+    COMMAND ${CMAKE_COMMAND} -E remove_directory ${OT_ACCURACY_DIR}/${variant}
+    DEPENDS generate_scene ${OT_TO_BAG_DEPS} ${OT_ACCURACY_DIR}/${variant}.cfg
+    COMMENT "accuracy rostest: scene ${OT_ACCURACY_SCENE} ${size} -> accuracy/${variant}.bag"
+    VERBATIM)
+  list(APPEND OT_ACCURACY_BAGS ${OT_ACCURACY_DIR}/${variant}.bag)
+endforeach()
 
 set(OT_ACCURACY_SHARED ${PROJECT_SOURCE_DIR}/../shared/sequences/${OT_ACCURACY_SEQUENCE})
 if(EXISTS ${OT_ACCURACY_SHARED}/groundtruth_rect.txt)
@@ -68,13 +79,18 @@ set_target_properties(accuracy_node PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${OT_ROS
 add_dependencies(accuracy_node ${PROJECT_NAME}_generate_messages_cpp)
 add_dependencies(tests accuracy_node)
 
-add_rostest(test/ros/accuracy/accuracy_scene.test ARGS bag:=${OT_ACCURACY_DIR}/scene.bag ${OT_ACCURACY_SCENE_BARS}
+add_rostest(test/ros/accuracy/accuracy_scene.test
+  ARGS bag:=${OT_ACCURACY_DIR}/scene.bag name:=scene ${OT_ACCURACY_SCENE_BARS}
+  DEPENDENCIES obstacle_tracker_nodelet accuracy_node accuracy_bags)
+add_rostest(test/ros/accuracy/accuracy_scene.test
+  ARGS bag:=${OT_ACCURACY_DIR}/scene_720.bag name:=scene_720 ${OT_ACCURACY_SCENE_720_BARS}
   DEPENDENCIES obstacle_tracker_nodelet accuracy_node accuracy_bags)
 add_rostest(test/ros/accuracy/accuracy_real.test ARGS ${OT_ACCURACY_REAL_ARGS}
   DEPENDENCIES obstacle_tracker_nodelet accuracy_node accuracy_bags)
-foreach(name accuracy_scene accuracy_real)
-  set(ctest_name _ctest_${PROJECT_NAME}_rostest_test_ros_accuracy_${name}.test)
-  if(TEST ${ctest_name})
-    set_tests_properties(${ctest_name} PROPERTIES RUN_SERIAL TRUE)
+# catkin names each rostest's CTest from the file and its arguments: find ours by the file name.
+get_property(ot_all_tests DIRECTORY PROPERTY TESTS)
+foreach(t ${ot_all_tests})
+  if(t MATCHES "_rostest_.*accuracy_(scene|real)")
+    set_tests_properties(${t} PROPERTIES RUN_SERIAL TRUE)
   endif()
 endforeach()
