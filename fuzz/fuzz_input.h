@@ -22,7 +22,13 @@ class ByteReader {
   std::size_t remaining() const { return empty() ? 0 : size_ - pos_; }
 
   std::uint8_t u8() { return pos_ < size_ ? data_[pos_++] : 0; }
-  std::uint16_t u16() { return static_cast<std::uint16_t>(u8() | (u8() << 8)); }
+  // Each byte read in its own statement: the order of operands (and of function arguments) is
+  // unspecified in C++, and GCC and clang differ, which would decode one input two ways.
+  std::uint16_t u16() {
+    const unsigned lo = u8();
+    const unsigned hi = u8();
+    return static_cast<std::uint16_t>(lo | (hi << 8));
+  }
   std::int16_t i16() { return static_cast<std::int16_t>(u16()); }
   // Any bit pattern, so NaN, +-inf, denormals and huge values all occur.
   double f64() {

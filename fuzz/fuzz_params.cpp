@@ -74,7 +74,9 @@ void writeRaw(oc::Params& p, std::size_t index, ByteReader& in) {
     if constexpr (std::is_same_v<T, bool>) {
       field = (r.u8() & 1) != 0;
     } else if constexpr (std::is_same_v<T, int>) {
-      field = static_cast<int>(static_cast<std::uint32_t>(r.u16()) << 16 | r.u16());
+      const std::uint32_t hi = r.u16();
+      const std::uint32_t lo = r.u16();
+      field = static_cast<int>(hi << 16 | lo);
     } else {
       field = r.f64();
     }

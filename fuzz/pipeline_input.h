@@ -143,13 +143,16 @@ inline PipelineRunResult runPipelineInput(const std::uint8_t* data, std::size_t 
     ++result.frames;
     try {
       if (op & 64) {
-        cv::Rect2f box(in.f32(), in.f32(), in.f32(), in.f32());
-        // pipeline.h: the box must be finite, at least 1 x 1 px and overlap the frame.
+        const float bx = in.f32(), by = in.f32(), bw = in.f32(), bh = in.f32();  // in this order
+        const cv::Rect2f box(bx, by, bw, bh);
+        // pipeline.h: the box must be finite, at least 1 x 1 px and overlap the frame; kcf.h:
+        // at most 16 times the frame's size.
         const bool badBox = !std::isfinite(box.x) || !std::isfinite(box.y) ||
                             !std::isfinite(box.width) || !std::isfinite(box.height) ||
                             box.width < 1.0f || box.height < 1.0f ||
                             (box & cv::Rect2f(0.0f, 0.0f, static_cast<float>(width),
-                                              static_cast<float>(height))).area() <= 0.0f;
+                                              static_cast<float>(height))).area() <= 0.0f ||
+                            box.width > 16.0f * width || box.height > 16.0f * height;
         deliberatelyBad = deliberatelyBad || badBox;
         result.violation = checkObstacles(pipeline.startTrack(frame, stamp, box));
       } else {
