@@ -163,11 +163,17 @@ TEST(Tracker, NodeletIsLoaded) {
   if (!h.manager_.empty()) {
     const std::string service = h.manager_ + "/list";
     ASSERT_TRUE(ros::service::waitForService(service, ros::Duration(30.0))) << service;
-    nodelet::NodeletList list;
-    ASSERT_TRUE(ros::service::call(service, list));
-    EXPECT_NE(std::find(list.response.nodelets.begin(), list.response.nodelets.end(), h.tracker_),
-              list.response.nodelets.end())
-        << h.tracker_ << " is not in " << service;
+    // The manager answers before the loader's request has been served: ask until it is listed.
+    bool listed = false;
+    const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(30.0);
+    while (!listed && ros::ok() && ros::WallTime::now() < end) {
+      nodelet::NodeletList list;
+      ASSERT_TRUE(ros::service::call(service, list));
+      listed = std::find(list.response.nodelets.begin(), list.response.nodelets.end(), h.tracker_) !=
+               list.response.nodelets.end();
+      if (!listed) ros::WallDuration(0.1).sleep();
+    }
+    EXPECT_TRUE(listed) << h.tracker_ << " is not in " << service << " after 30 s";
   }
   // Loaded and initialised: its outputs and its dynamic_reconfigure server are up.
   ASSERT_TRUE(ros::service::waitForService(h.tracker_ + "/set_parameters", ros::Duration(30.0)));
