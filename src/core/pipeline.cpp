@@ -411,16 +411,21 @@ struct Pipeline::Impl {
     ++t.ref_count;
   }
 
+  float inFrameFraction(const cv::Rect2f& b) const {
+    const cv::Rect2f f(0.0f, 0.0f, static_cast<float>(frame_size.width), static_cast<float>(frame_size.height));
+    return b.area() > 0.0f ? (b & f).area() / b.area() : 0.0f;
+  }
+
   void step(Track& t, const cv::Mat& frame, double stamp) {
     ++t.age;
     // The filter first, in both states (re-detecting: without learning).
     configureFilter(t, t.state == TrackState::kTracking);
     const KcfResult r = t.kcf.update(frame);
     t.result = r;
-    if (r.peak >= goodPeak(t) && usableBox(r.box, frame_size)) {
-      // The running means follow only frames the model learned from (reliable ones), so that a
-      // target fading out of view does not drag the relative thresholds down with it.
-      if (r.model_updated || t.ref_count < kRefWarmup) updateRefs(t, r);
+    // A box mostly outside the frame is an obstacle leaving the view: the filter's answer there
+    // correlates mostly padding and background, so it does not count as tracking.
+    if (r.peak >= goodPeak(t) && usableBox(r.box, frame_size) && inFrameFraction(r.box) >= kMinInFrame) {
+      updateRefs(t, r);
       acceptGood(t, r.box, stamp, false);
       return;
     }
@@ -547,7 +552,8 @@ struct Pipeline::Impl {
   }
 
   static constexpr int kRefWarmup = 3;         // good frames before the relative tests apply
-  static constexpr float kRefSmoothing = 0.1f;   // EMA weight of the newest learned frame
+  static constexpr float kRefSmoothing = 0.2f;   // EMA weight of the newest good frame
+  static constexpr float kMinInFrame = 0.5f;     // share of a tracked box inside the frame
   static constexpr float kMaxLearnGate = 0.75f;
 };
 
