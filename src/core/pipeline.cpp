@@ -319,10 +319,7 @@ struct Pipeline::Impl {
         std::min<std::size_t>(candidates.size(), static_cast<std::size_t>(params.redetect_candidates));
     // A new region must match the model about as well as the target usually does (a background
     // patch or a passing bird correlates weakly but often above the tracking threshold).
-    float accept = goodPeak(t);
-    if (t.ref_count >= kRefWarmup) {
-      accept = std::max(accept, static_cast<float>(params.redetect_relative_threshold) * t.ref_peak);
-    }
+    const float accept = acceptPeak(t);
     int best = -1;
     float best_final = 0.0f;
     KcfResult best_result;
@@ -378,6 +375,16 @@ struct Pipeline::Impl {
     return th;
   }
 
+  // The peak a re-detected answer needs (a salient region, or the filter finding the target
+  // again on its own): the tracking test, and redetect_relative_threshold x the running mean.
+  float acceptPeak(const Track& t) const {
+    float accept = goodPeak(t);
+    if (t.ref_count >= kRefWarmup) {
+      accept = std::max(accept, static_cast<float>(params.redetect_relative_threshold) * t.ref_peak);
+    }
+    return accept;
+  }
+
   // Filter settings for the next update. While tracking: learning gated by learn_threshold,
   // raised to the confidence of a response at learn_relative_threshold x the running mean peak
   // and PSR (LMCF's rule, Wang et al. CVPR 2017), capped so that a perfect history does not
@@ -424,7 +431,8 @@ struct Pipeline::Impl {
     t.result = r;
     // A box mostly outside the frame is an obstacle leaving the view: the filter's answer there
     // correlates mostly padding and background, so it does not count as tracking.
-    if (r.peak >= goodPeak(t) && usableBox(r.box, frame_size) && inFrameFraction(r.box) >= kMinInFrame) {
+    const float needed = t.state == TrackState::kTracking ? goodPeak(t) : acceptPeak(t);
+    if (r.peak >= needed && usableBox(r.box, frame_size) && inFrameFraction(r.box) >= kMinInFrame) {
       updateRefs(t, r);
       acceptGood(t, r.box, stamp, false);
       return;
