@@ -331,9 +331,12 @@ struct KcfTracker::Impl {
     float wh = std::max(box.height * pad, min_win);
     // Keep the window's aspect within 1:kMaxWindowAspect so a thin target still has context
     // (and enough cells) along its short side.
-    // Small targets get a square window: their motion is large against their short side.
+    // Small, compact targets (aspect <= 2) get a square window: their motion is large against
+    // their short side. Thin small targets (a crossing aircraft) keep the aspect limit: a square
+    // window stalled the filter on them in the generated multi and out_of_view scenes.
+    const float box_aspect = std::max(box.width, box.height) / std::max(1e-3f, std::min(box.width, box.height));
     const float max_aspect =
-        std::sqrt(box.width * box.height) < kSmallTarget ? 1.0f : kMaxWindowAspect;
+        (std::sqrt(box.width * box.height) < kSmallTarget && box_aspect <= 2.0f) ? 1.0f : kMaxWindowAspect;
     ww = std::max(ww, wh / max_aspect);
     wh = std::max(wh, ww / max_aspect);
     const float longer = std::max(ww, wh);
