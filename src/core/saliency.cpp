@@ -346,7 +346,24 @@ struct SaliencyDetector::Impl {
   }
 };
 
-SaliencyDetector::SaliencyDetector(const Params& params) : impl_(new Impl) { setParams(params); }
+namespace {
+// OpenCV builds its 8-bit Lab lookup tables on the first BGR2Lab call (about 130 ms here). Doing
+// it when a detector is made keeps that stall out of the frame on which the first track starts
+// (a camera-rate nodelet with queue size 1 would drop the frames behind it).
+void warmUpLabTables() {
+  static const bool done = [] {
+    cv::Mat bgr(1, 1, CV_8UC3, cv::Scalar(0, 0, 0)), lab;
+    cv::cvtColor(bgr, lab, cv::COLOR_BGR2Lab);
+    return true;
+  }();
+  (void)done;
+}
+}  // namespace
+
+SaliencyDetector::SaliencyDetector(const Params& params) : impl_(new Impl) {
+  warmUpLabTables();
+  setParams(params);
+}
 SaliencyDetector::~SaliencyDetector() { delete impl_; }
 
 void SaliencyDetector::setParams(const Params& params) {
