@@ -19,7 +19,10 @@ set(OT_ACCURACY_DIR ${CMAKE_CURRENT_BINARY_DIR}/accuracy)
 set(OT_ACCURACY_SCENE "bird" CACHE STRING "generate_scene scenario of the accuracy rostest")
 set(OT_ACCURACY_SCENE_SEED 3 CACHE STRING "generate_scene seed of the accuracy rostest")
 set(OT_ACCURACY_SCENE_SIZE 480x360 CACHE STRING "frame size of the accuracy rostest scene")
-set(OT_ACCURACY_SEQUENCE "antiuav_ir_35" CACHE STRING "shared sequence replayed by the real accuracy rostest")
+# antiuav_ir_09: ours-auto 0.987 / 0.546 on the whole clip with evaluate (05:00 UTC). antiuav_ir_35
+# was the first choice, but its auto-initialised score swings between 0.15 and 0.96 precision with
+# small parameter changes (README Results), which makes it a poor regression bar for the ROS path.
+set(OT_ACCURACY_SEQUENCE "antiuav_ir_09" CACHE STRING "shared sequence replayed by the real accuracy rostest")
 set(OT_ACCURACY_SEQUENCE_FRAMES 300 CACHE STRING "frames of the shared sequence put in the bag")
 # Bars (OTB precision at 20 px / success AUC of the nodelet's best obstacle, auto-initialised).
 set(OT_ACCURACY_SCENE_BARS min_precision20:=0.80 min_auc:=0.40)
