@@ -140,6 +140,7 @@ struct SceneGenerator::Impl {
   cv::Mat cov_store, scol_store, sa_store;
   std::vector<std::uint32_t> blur_scratch;
   cv::Mat mask_tmp;
+  std::vector<float> colmax_;
 
   cv::Point2d cameraAt(double t) const {
     cv::Point2d d(0, 0);
@@ -500,10 +501,10 @@ void SceneGenerator::Impl::setup() {
       oc.velocity = cv::Point2d(v_t.x - s * min_rel, v_t.y);
       v_rel = min_rel;
     }
-    // Fully hidden for about 15 % of the sequence: the opaque core (about half the sprite)
-    // must exceed the obstacle by the distance travelled meanwhile.
-    const double core_w = std::max<double>(b.width, b.height) * 1.2 + v_rel * 0.15 * D;
-    const int sw = static_cast<int>(std::min(2.2 * core_w, 1.5 * Wd)) + 8;
+    // Fully hidden for about 15 % of the sequence: the opaque core (about 3/4 of the sprite's
+    // width, renderCloudSprite) must exceed the obstacle by the distance travelled meanwhile.
+    const double core_w = std::max<double>(b.width, b.height) * 1.1 + v_rel * 0.15 * D;
+    const int sw = static_cast<int>(std::min(core_w / 0.75, 1.5 * Wd)) + 8;
     const int sh = static_cast<int>(std::min(std::max(0.65 * sw, 2.4 * b.height + 8.0), 1.2 * Hd)) + 8;
     oc.centre_mid = c_t + cv::Point2d(0, ro.uniform(-0.1, 0.1) * b.height);
     renderCloudSprite(cv::Size(sw, sh), hashCombine(cfg.seed, 6), mono16, oc.premul, oc.alpha);
@@ -634,6 +635,7 @@ void SceneGenerator::Impl::rasterize(int ti, double t, const cv::Point2d& cam, c
   ro.truth.scale_px = mid.pose.scale;
   ro.truth.distance_m = f_px * tr.model.size_m / std::max(1e-6, static_cast<double>(mid.pose.scale));
   ro.truth.time_to_contact = mid.ttc;
+  ro.truth.shape_box = cv::Rect2f(x0, y0, x1 - x0, y1 - y0);
   // Patch: the unclipped extent (bounded to a generous window around the frame).
   int px0 = static_cast<int>(std::floor(x0)), py0 = static_cast<int>(std::floor(y0));
   int px1 = static_cast<int>(std::ceil(x1)), py1 = static_cast<int>(std::ceil(y1));
@@ -658,7 +660,6 @@ void SceneGenerator::Impl::rasterize(int ti, double t, const cv::Point2d& cam, c
     sa = view(sa_store, ro.patch.size(), CV_32FC1);
   }
   const float inv_n = 1.0f / static_cast<float>(n);
-  float gx0 = 1e30f, gy0 = 1e30f, gx1 = -1e30f, gy1 = -1e30f;
   for (int k = 0; k < n; ++k) {
     cv::Mat& C = n > 1 ? scol : ro.col;
     cv::Mat& A = n > 1 ? sa : ro.a;
@@ -682,7 +683,6 @@ void SceneGenerator::Impl::rasterize(int ti, double t, const cv::Point2d& cam, c
       cv::Mat cov = view(cov_store, pr.size(), CV_32FC1);
       cov.setTo(0.0f);
       addPolygonCoverage(pl.pts.data(), static_cast<int>(pl.pts.size()), pr.tl(), subrowsForHeight(by1 - by0), cov);
-      float maxcov = 0.0f;
       for (int r = 0; r < pr.height; ++r) {
         const float* cv_ = cov.ptr<float>(r);
         float* ar = A.ptr<float>(lr.y + r) + lr.x;
@@ -691,7 +691,6 @@ void SceneGenerator::Impl::rasterize(int ti, double t, const cv::Point2d& cam, c
         for (int c = 0; c < pr.width; ++c) {
           const float a = std::min(cv_[c], 1.0f) * pl.alpha;
           if (a <= 0.0f) continue;
-          maxcov = std::max(maxcov, a);
           const float px = static_cast<float>(pr.x + c) + 0.5f - pl.centroid.x;
           const float shade = 1.0f + pl.gradient.x * px + pl.gradient.y * py;
           ar[c] = ar[c] * (1.0f - a) + a;
@@ -701,12 +700,6 @@ void SceneGenerator::Impl::rasterize(int ti, double t, const cv::Point2d& cam, c
             for (int ch = 0; ch < 3; ++ch) cr[c * 3 + ch] = cr[c * 3 + ch] * (1.0f - a) + a * pl.bgr[ch] * shade;
           }
         }
-      }
-      if (maxcov >= 1.0f / 255.0f) {
-        gx0 = std::min(gx0, bx0);
-        gy0 = std::min(gy0, by0);
-        gx1 = std::max(gx1, bx1);
-        gy1 = std::max(gy1, by1);
       }
     }
     if (n > 1) {
@@ -726,7 +719,40 @@ void SceneGenerator::Impl::rasterize(int ti, double t, const cv::Point2d& cam, c
     for (int c = 0; c < ro.patch.width; ++c) total += ar[c];
   }
   ro.total = total;
-  if (gx1 < gx0) return;  // nothing visible was drawn
+  // The box is the extent of the drawn pixels (alpha >= half a grey level, the same test as the
+  // mask), refined to sub-pixel: on a straight edge the coverage of the outermost pixel column is
+  // the covered fraction of that column.
+  const float tau = 0.5f / 255.0f;
+  colmax_.assign(static_cast<std::size_t>(ro.patch.width), 0.0f);
+  float r_first = -1.0f, r_last = -1.0f;
+  int ry0 = -1, ry1 = -1;
+  for (int r = 0; r < ro.patch.height; ++r) {
+    const float* ar = ro.a.ptr<float>(r);
+    float rm = 0.0f;
+    for (int c = 0; c < ro.patch.width; ++c) {
+      rm = std::max(rm, ar[c]);
+      colmax_[static_cast<std::size_t>(c)] = std::max(colmax_[static_cast<std::size_t>(c)], ar[c]);
+    }
+    if (rm >= tau) {
+      if (ry0 < 0) {
+        ry0 = r;
+        r_first = std::min(rm, 1.0f);
+      }
+      ry1 = r;
+      r_last = std::min(rm, 1.0f);
+    }
+  }
+  if (ry0 < 0) return;  // nothing visible was drawn
+  int cx0i = -1, cx1i = -1;
+  for (int c = 0; c < ro.patch.width; ++c)
+    if (colmax_[static_cast<std::size_t>(c)] >= tau) {
+      if (cx0i < 0) cx0i = c;
+      cx1i = c;
+    }
+  float gx0 = static_cast<float>(ro.patch.x + cx0i) + 1.0f - std::min(colmax_[static_cast<std::size_t>(cx0i)], 1.0f);
+  float gx1 = static_cast<float>(ro.patch.x + cx1i) + std::min(colmax_[static_cast<std::size_t>(cx1i)], 1.0f);
+  float gy0 = static_cast<float>(ro.patch.y + ry0) + 1.0f - r_first;
+  float gy1 = static_cast<float>(ro.patch.y + ry1) + r_last;
   // Camera motion blur spreads the drawn shape over the blur offsets.
   int ox0 = 0, oy0 = 0, ox1 = 0, oy1 = 0;
   for (const auto& o : blur_off) {

@@ -12,9 +12,11 @@
 // (see random.h, raster.h).
 //
 // Ground truth conventions: boxes are in pixels, top-left corner + size, with pixel (c, r)
-// covering [c, c+1) x [r, r+1) (so a box is the exact extent of the drawn shape, sub-pixel). The
-// box covers the whole obstacle (including its motion-blur streak), clipped to the frame, even
-// where a cloud or a nearer obstacle hides it; `visible_fraction` is the share of the obstacle's
+// covering [c, c+1) x [r, r+1). `box` is the extent of the drawn obstacle (every pixel whose
+// coverage is at least half a grey level), refined to sub-pixel from the coverage of the outermost
+// pixel rows and columns, so it matches the drawn mask within a pixel. It covers the whole obstacle
+// (including its motion-blur streak), clipped to the frame, even where a cloud or a nearer
+// obstacle hides it; `visible_fraction` is the share of the obstacle's
 // area that is inside the frame and not hidden; `visible` is visible_fraction >= kVisibleThreshold.
 #pragma once
 
@@ -53,6 +55,8 @@ struct ObstacleTruth {
   double distance_m = 0.0;        // from the camera (from size_m, focal length and scale)
   double time_to_contact = std::numeric_limits<double>::infinity();  // s; +inf when not closing
   double scale_px = 0.0;          // pixels per model unit (the drawn size before projection)
+  cv::Rect2f shape_box;           // analytic extent of the model's projected outline (all plates,
+                                  // exposure included), unclipped; proportional to scale_px
 };
 
 struct FrameTruth {
