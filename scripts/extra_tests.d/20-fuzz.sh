@@ -8,6 +8,8 @@
 # RSS above 2 GiB fails the script; the input that did it is kept in $BUILD/artifacts/ (replay:
 # $BUILD/fuzz_NAME $BUILD/artifacts/crash-...; add it to test/core/test_robust_fuzz.cpp).
 #   FUZZ_SECONDS      seconds per target (default 60)
+#   FUZZ_SEED         libFuzzer's random seed (default 1, so a CI finding replays the same way
+#                     from an empty corpus; 0 = a new seed each run, for longer local runs)
 #   OT_FUZZ_BUILD_DIR build folder (default _build/fuzz)
 #   JOBS              parallel build jobs (default 2)
 set -euo pipefail
@@ -15,6 +17,7 @@ cd "$(dirname "$0")/../.."
 export PATH=/usr/bin:/bin:/usr/sbin:/sbin:$PATH
 BUILD=${OT_FUZZ_BUILD_DIR:-_build/fuzz}
 SECONDS_EACH=${FUZZ_SECONDS:-60}
+SEED=${FUZZ_SEED:-1}
 JOBS=${JOBS:-2}
 
 if ! command -v clang++ >/dev/null; then
@@ -41,7 +44,7 @@ for target in "$BUILD"/fuzz_*; do
   mkdir -p "$corpus"
   log=$BUILD/$name.log
   echo "== fuzz: $name for ${SECONDS_EACH}s (corpus $corpus, seeds $BUILD/seeds/$name, log $log)"
-  if "$target" -max_total_time="$SECONDS_EACH" -timeout=20 -rss_limit_mb=2048 -max_len=8192 \
+  if "$target" -seed="$SEED" -max_total_time="$SECONDS_EACH" -timeout=20 -rss_limit_mb=2048 -max_len=8192 \
       -print_final_stats=1 -artifact_prefix="$BUILD/artifacts/$name-" \
       "$corpus" "$BUILD/seeds/$name" >"$log" 2>&1; then
     grep -E '^stat::(number_of_executed_units|average_exec_per_sec|new_units_added)' "$log" || true

@@ -1,6 +1,7 @@
 // Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
 #include "obstacle_tracker/core/params.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
@@ -8,7 +9,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include <opencv2/core.hpp>
+#include "obstacle_tracker/core/flat_yaml.h"
+
 
 namespace obstacle_tracker {
 namespace core {
@@ -129,76 +131,46 @@ std::vector<std::string> validate(Params& params) {
 
 namespace {
 
-Params loadFromStorage(cv::FileStorage& fs, const std::string& what,
-                       std::vector<std::string>* messages, const Params& base) {
-  Params params = base;
-  cv::FileNode root = fs.root();
-  if (root.empty() || root.isNone()) return params;
-  if (!root.isMap()) {
-    throw std::runtime_error(what + ": expected a map of parameter names to values");
+// Applies the entries of a flat YAML map (flat_yaml.h) on top of `base`. Unknown names and
+// values that are not numbers produce messages; only text that is not a map throws.
+Params loadParamsText(const std::string& yaml, const std::string& what,
+                      std::vector<std::string>* messages, const Params& base) {
+  std::vector<FlatYamlEntry> entries;
+  try {
+    entries = parseFlatYaml(yaml);
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error("cannot parse " + what + ": " + e.what());
   }
-  for (cv::FileNodeIterator it = root.begin(); it != root.end(); ++it) {
-    cv::FileNode node = *it;
-    std::string name = node.name();
+  Params params = base;
+  std::vector<std::string> seen;
+  for (const FlatYamlEntry& entry : entries) {
+    const std::string& name = entry.key;
+    const std::string where = what + ":" + std::to_string(entry.line);
     const ParamInfo* info = findParam(name);
     if (!info) {
-      if (messages) messages->push_back(what + ": unknown parameter '" + name + "' ignored");
+      if (messages) messages->push_back(where + ": unknown parameter '" + name + "' ignored");
       continue;
     }
-    double value = std::numeric_limits<double>::quiet_NaN();
-    if (node.isInt() || node.isReal()) {
-      value = static_cast<double>(node);
-    } else if (node.isString()) {
-      std::string s = static_cast<std::string>(node);
-      if (s == "true" || s == "True" || s == "TRUE" || s == "yes" || s == "on") {
-        value = 1.0;
-      } else if (s == "false" || s == "False" || s == "FALSE" || s == "no" || s == "off") {
-        value = 0.0;
-      } else if (s == ".inf" || s == "inf" || s == "+.inf") {
-        value = std::numeric_limits<double>::infinity();
-      } else if (s == "-.inf" || s == "-inf") {
-        value = -std::numeric_limits<double>::infinity();
-      } else {
-        if (messages) {
-          messages->push_back(what + ": parameter '" + name + "' has a non-numeric value '" + s +
-                              "'; keeping " + formatValue(*info, getParam(params, name)));
-        }
-        continue;
-      }
-    } else {
+    if (std::find(seen.begin(), seen.end(), name) != seen.end() && messages) {
+      messages->push_back(where + ": parameter '" + name + "' given again; the last one counts");
+    }
+    seen.push_back(name);
+    if (entry.kind != FlatYamlEntry::kNumber && entry.kind != FlatYamlEntry::kBool) {
       if (messages) {
-        messages->push_back(what + ": parameter '" + name + "' is not a number; ignored");
+        const char* what_it_is = entry.kind == FlatYamlEntry::kNested ? "a map or list"
+                                 : entry.kind == FlatYamlEntry::kNull ? "empty"
+                                                                      : "not a number";
+        messages->push_back(where + ": parameter '" + name + "' is " + what_it_is +
+                            (entry.kind == FlatYamlEntry::kString ? " ('" + entry.text + "')" : "") +
+                            "; keeping " + formatValue(*info, getParam(params, name)));
       }
       continue;
     }
     std::string msg;
-    setParam(params, name, value, &msg);
-    if (!msg.empty() && messages) messages->push_back(what + ": " + msg);
+    setParam(params, name, entry.number, &msg);
+    if (!msg.empty() && messages) messages->push_back(where + ": " + msg);
   }
   return params;
-}
-
-// The files are plain YAML as rosparam reads them; OpenCV's parser wants its "%YAML:1.0" header,
-// so it is added in memory when missing (and a PyYAML-style "%YAML 1.x" directive replaced).
-Params loadParamsText(const std::string& yaml, const std::string& what,
-                      std::vector<std::string>* messages, const Params& base) {
-  std::string body = yaml;
-  if (body.rfind("%YAML", 0) == 0) {
-    size_t eol = body.find('\n');
-    body = eol == std::string::npos ? std::string() : body.substr(eol + 1);
-  }
-  if (body.find_first_not_of(" \t\r\n") == std::string::npos) return base;
-  std::string text = "%YAML:1.0\n" + (body.rfind("---", 0) == 0 ? body : "---\n" + body);
-  cv::FileStorage fs;
-  try {
-    if (!fs.open(text, cv::FileStorage::READ | cv::FileStorage::MEMORY |
-                           cv::FileStorage::FORMAT_YAML)) {
-      throw std::runtime_error("cannot parse " + what);
-    }
-    return loadFromStorage(fs, what, messages, base);
-  } catch (const cv::Exception& e) {
-    throw std::runtime_error("cannot parse " + what + ": " + e.what());
-  }
 }
 
 }  // namespace

@@ -129,7 +129,7 @@ bool setParam(Params& params, const std::string& name, double value, std::string
 // Clamps every field into its range (NaN -> default). Returns one message per changed field.
 std::vector<std::string> validate(Params& params);
 
-// Loads a flat YAML/JSON map of parameter names to values (cv::FileStorage), on top of `base`.
+// Loads a flat YAML/JSON map of parameter names to values (flat_yaml.h), on top of `base`.
 // Unknown keys and bad values produce messages, never an exception; a file that cannot be read
 // or parsed throws std::runtime_error naming the file.
 Params loadParamsFile(const std::string& path, std::vector<std::string>* messages,

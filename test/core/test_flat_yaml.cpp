@@ -1,0 +1,163 @@
+// Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
+//
+// The flat YAML reader behind parameter files: YAML 1.1 scalar resolution as rosparam applies
+// it, block and flow maps, and refusal (std::runtime_error with a line number) of what is not a
+// flat map. Also the fuzzer's find that made us replace cv::FileStorage.
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "obstacle_tracker/core/flat_yaml.h"
+#include "obstacle_tracker/core/params.h"
+
+namespace oc = obstacle_tracker::core;
+using Entry = oc::FlatYamlEntry;
+
+namespace {
+
+Entry only(const std::string& text) {
+  const auto entries = oc::parseFlatYaml(text);
+  EXPECT_EQ(entries.size(), 1u) << text;
+  return entries.empty() ? Entry() : entries.front();
+}
+
+double number(const std::string& value) {
+  const Entry e = only("k: " + value);
+  EXPECT_EQ(e.kind, Entry::kNumber) << value;
+  return e.number;
+}
+
+std::string errorOf(const std::string& text) {
+  try {
+    oc::parseFlatYaml(text);
+  } catch (const std::runtime_error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(FlatYaml, ResolvesNumbersAsYaml11) {
+  EXPECT_EQ(number("42"), 42.0);
+  EXPECT_EQ(number("-7"), -7.0);
+  EXPECT_EQ(number("+3"), 3.0);
+  EXPECT_EQ(number("0.25"), 0.25);
+  EXPECT_EQ(number(".5"), 0.5);
+  EXPECT_EQ(number("5."), 5.0);
+  EXPECT_EQ(number("1.5e-3"), 1.5e-3);
+  EXPECT_EQ(number("2e3"), 2000.0);  // lenient: PyYAML would read a string
+  EXPECT_EQ(number("1_000"), 1000.0);
+  EXPECT_EQ(number("0x1F"), 31.0);
+  EXPECT_EQ(number("0o17"), 15.0);
+  EXPECT_EQ(number("010"), 8.0);  // YAML 1.1 octal, as rosparam reads it
+  EXPECT_EQ(number("0b101"), 5.0);
+  EXPECT_EQ(number("1e999"), HUGE_VAL);
+  EXPECT_EQ(number("1e-999"), 0.0);
+  EXPECT_EQ(number(".inf"), HUGE_VAL);
+  EXPECT_EQ(number("-.Inf"), -HUGE_VAL);
+  EXPECT_TRUE(std::isnan(number(".nan")));
+  EXPECT_EQ(number("!!float 3"), 3.0);
+  EXPECT_EQ(number("&anchor 4"), 4.0);
+}
+
+TEST(FlatYaml, ResolvesBoolsNullsAndStrings) {
+  for (const char* t : {"true", "True", "yes", "ON"}) {
+    const Entry e = only(std::string("k: ") + t);
+    EXPECT_EQ(e.kind, Entry::kBool) << t;
+    EXPECT_EQ(e.number, 1.0) << t;
+  }
+  for (const char* f : {"false", "FALSE", "no", "off"}) {
+    const Entry e = only(std::string("k: ") + f);
+    EXPECT_EQ(e.kind, Entry::kBool) << f;
+    EXPECT_EQ(e.number, 0.0) << f;
+  }
+  EXPECT_EQ(only("k:").kind, Entry::kNull);
+  EXPECT_EQ(only("k: ~").kind, Entry::kNull);
+  EXPECT_EQ(only("k: null").kind, Entry::kNull);
+  for (const char* s : {"hello", "1.2.3", "0x", "1e", "e5", "--1", "0.5 px", "*alias"}) {
+    EXPECT_EQ(only(std::string("k: ") + s).kind, Entry::kString) << s;
+  }
+  const Entry quoted = only("k: \"0.5\"");
+  EXPECT_EQ(quoted.kind, Entry::kString);  // quoted: a string, as in YAML
+  EXPECT_EQ(quoted.text, "0.5");
+  EXPECT_EQ(only("k: 'it''s # not a comment'").text, "it's # not a comment");
+}
+
+TEST(FlatYaml, ReadsBlockMapsWithCommentsAndDocumentMarkers) {
+  const auto entries = oc::parseFlatYaml(
+      "\xEF\xBB\xBF%YAML 1.1\n---\n# comment\npeak_threshold: 0.3  # trailing\r\n\n"
+      "\"quoted name\": 2\nnested:\n  a: 1\n  b: 2\nlist:\n- 1\n- 2\nflow: {a: 1, b: [2, 3]}\n"
+      "last: 5\n...\nignored after the end marker\n");
+  ASSERT_EQ(entries.size(), 6u);
+  EXPECT_EQ(entries[0].key, "peak_threshold");
+  EXPECT_EQ(entries[0].number, 0.3);
+  EXPECT_EQ(entries[0].line, 4);
+  EXPECT_EQ(entries[1].key, "quoted name");
+  EXPECT_EQ(entries[2].kind, Entry::kNested);
+  EXPECT_EQ(entries[3].kind, Entry::kNested);
+  EXPECT_EQ(entries[4].kind, Entry::kNested);
+  EXPECT_EQ(entries[5].key, "last");
+  EXPECT_EQ(entries[5].number, 5.0);
+}
+
+TEST(FlatYaml, ReadsFlowMapsAndJson) {
+  const auto entries = oc::parseFlatYaml(
+      "{\"peak_threshold\": 0.2, max_obstacles: 3,  # comment\n  nested: {x: [1, {y: 2}]}, "
+      "s: 'a,b}'}\n");
+  ASSERT_EQ(entries.size(), 4u);
+  EXPECT_EQ(entries[0].key, "peak_threshold");
+  EXPECT_EQ(entries[0].number, 0.2);
+  EXPECT_EQ(entries[1].number, 3.0);
+  EXPECT_EQ(entries[2].kind, Entry::kNested);
+  EXPECT_EQ(entries[2].line, 2);
+  EXPECT_EQ(entries[3].text, "a,b}");
+  EXPECT_TRUE(oc::parseFlatYaml("{}").empty());
+  EXPECT_TRUE(oc::parseFlatYaml("").empty());
+  EXPECT_TRUE(oc::parseFlatYaml("# only a comment\n---\n").empty());
+}
+
+TEST(FlatYaml, RefusesWhatIsNotAFlatMapWithTheLine) {
+  EXPECT_NE(errorOf("[1, 2]").find("found a list"), std::string::npos);
+  EXPECT_NE(errorOf("- 1\n- 2\n").find("found a list"), std::string::npos);
+  EXPECT_NE(errorOf("a: 1\njust words\n").find("line 2"), std::string::npos);
+  EXPECT_NE(errorOf("a: 1\n  b: 2\n").find("line 2: unexpected indentation"), std::string::npos);
+  EXPECT_NE(errorOf("{a: 1").find("unclosed"), std::string::npos);
+  EXPECT_NE(errorOf("{a: 1} b").find("after the closing"), std::string::npos);
+  EXPECT_NE(errorOf("{a 1}").find("expected 'name: value'"), std::string::npos);
+  EXPECT_NE(errorOf("a: \"open").find("unterminated"), std::string::npos);
+  EXPECT_NE(errorOf("a: [1, 2").find("unclosed"), std::string::npos);
+  EXPECT_NE(errorOf("a: 1\n---\nb: 2\n").find("second YAML document"), std::string::npos);
+  EXPECT_NE(errorOf(": 1").find("empty parameter name"), std::string::npos);
+  EXPECT_NE(errorOf("a: 'x' y").find("unexpected text"), std::string::npos);
+}
+
+TEST(FlatYaml, ParameterLoaderNamesTheLineAndRefusesTheFuzzersFind) {
+  std::vector<std::string> messages;
+  oc::Params p = oc::loadParamsString(
+      "peak_threshold: 0.3\npeak_threshold: 0.35\nmax_obstacles:\nmerge_iou: {a: 1}\n", &messages);
+  EXPECT_DOUBLE_EQ(p.peak_threshold, 0.35);
+  ASSERT_EQ(messages.size(), 3u);
+  EXPECT_NE(messages[0].find("parameters:2: parameter 'peak_threshold' given again"),
+            std::string::npos)
+      << messages[0];
+  EXPECT_NE(messages[1].find("'max_obstacles' is empty"), std::string::npos) << messages[1];
+  EXPECT_NE(messages[2].find("'merge_iou' is a map or list"), std::string::npos) << messages[2];
+
+  // fuzz_params (CI, 2026-11-22): cv::FileStorage let std::length_error escape on this text,
+  // which took the process down. Now a std::runtime_error naming the text and line.
+  const std::string found("peak_thr%eshold::\xe0\xa4\xcf\xd7 8]\xf3\xff\xff\xff\0\0\0\0\0\0\0\0\0\0"
+                          "\0\0\0\0\0\0\0\0\0\x9e\x9e\x9e\x9e\x9e\x9e\x9e\x9e\x9e\x9e\x9e\x9e\x9e"
+                          "\x9e\x9e",
+                          62);
+  try {
+    oc::loadParamsString(found, &messages);
+    ADD_FAILURE() << "expected a parse error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot parse parameters: line 1"), std::string::npos)
+        << e.what();
+  }
+}
