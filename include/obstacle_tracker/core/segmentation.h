@@ -39,7 +39,8 @@ class MbdSaliency {
   MatArena lab_, median_, dist_, upper_, lower_, fmap_, fbg_, tmp_a_, tmp_b_;
 };
 
-// Otsu threshold (cv::threshold THRESH_OTSU), 8-connected regions, statistics, filtering and
+// Otsu threshold (cv::threshold THRESH_OTSU), 8-connected regions (our own union-find labelling:
+// cv::connectedComponents allocates its label table on every call), statistics, filtering and
 // ranking. Regions are mapped to frame coordinates with map pixel (c, r) -> frame
 // (offset.x + c * sx, offset.y + r * sy).
 class RegionExtractor {
@@ -56,6 +57,7 @@ class RegionExtractor {
   const cv::Mat& binary() const { return binary_; }
 
  private:
+  int labelComponents();
   struct Accumulator {
     int area, x0, y0, x1, y1;
     std::uint64_t sum;
@@ -63,6 +65,7 @@ class RegionExtractor {
   MatArena binary_arena_, labels_arena_;
   cv::Mat binary_, labels_;
   std::vector<Accumulator> acc_;
+  std::vector<int> parent_;  // union-find of the provisional labels (kept: no allocation per call)
 };
 
 // Ranking score of a region (documented in saliency.cpp): saliency mass = area * mean saliency
