@@ -370,8 +370,16 @@ double RegionExtractor::extract(const cv::Mat& map, const Geometry& g, const Par
     }
     regions.push_back(reg);
   }
-  std::sort(regions.begin(), regions.end(),
-            [](const SalientRegion& x, const SalientRegion& y) { return x.score > y.score; });
+  // Best score first; equal scores (equal saliency sums are common among small regions) in
+  // raster order of their boxes, so that the order depends neither on the labelling algorithm
+  // nor on std::sort's handling of ties.
+  std::sort(regions.begin(), regions.end(), [](const SalientRegion& x, const SalientRegion& y) {
+    if (x.score != y.score) return x.score > y.score;
+    if (x.box.y != y.box.y) return x.box.y < y.box.y;
+    if (x.box.x != y.box.x) return x.box.x < y.box.x;
+    if (x.box.height != y.box.height) return x.box.height < y.box.height;
+    return x.box.width < y.box.width;
+  });
   return t;
 }
 
