@@ -537,11 +537,16 @@ struct Pipeline::Impl {
   }
 
   void report() {
-    std::stable_sort(tracks.begin(), tracks.end(), [](const std::unique_ptr<Track>& a, const std::unique_ptr<Track>& b) {
-      const int ra = stateRank(a->state), rb = stateRank(b->state);
+    // Best first (state, then age), stable. An insertion sort over the few tracks: std::stable_sort
+    // takes a temporary buffer from the heap on every call (test_pipeline_memory).
+    const auto before = [](const Track& a, const Track& b) {
+      const int ra = stateRank(a.state), rb = stateRank(b.state);
       if (ra != rb) return ra < rb;
-      return a->age > b->age;
-    });
+      return a.age > b.age;
+    };
+    for (std::size_t i = 1; i < tracks.size(); ++i) {
+      for (std::size_t j = i; j > 0 && before(*tracks[j], *tracks[j - 1]); --j) std::swap(tracks[j], tracks[j - 1]);
+    }
     out.clear();
     for (const auto& t : tracks) {
       Obstacle o;

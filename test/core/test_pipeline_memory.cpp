@@ -163,16 +163,9 @@ TEST(PipelineMemory, ThreeTracksNoHeapAllocationPerFrame) {
     largest = std::max(largest, g_largest.load());
   }
   const int counted = kFrames - 1 - kWarmup;
-  // KNOWN ALLOCATION (measured 2026-11-22, memory_probe + gdb): Pipeline::Impl::report() sorts the
-  // tracks with std::stable_sort (src/core/pipeline.cpp), and libstdc++'s stable_sort always
-  // obtains a temporary buffer of (n+1)/2 elements with operator new(nothrow): one 16-byte
-  // malloc per frame with three tracks, nothing else. Until report() uses an allocation-free
-  // stable order (e.g. an insertion sort over the few tracks), this test allows exactly that: at
-  // most one allocation per frame, of at most a few pointers. Any other per-frame buffer is
-  // larger and fails here. Once report() is fixed, tighten to EXPECT_EQ(total, 0).
-  EXPECT_LE(most, 1) << total << " allocations in " << counted << " frames";
-  EXPECT_LE(total, counted);
-  EXPECT_LE(largest, 8 * sizeof(void*)) << "an allocation per frame other than stable_sort's buffer";
+  // No allocation at all once three tracks exist (report() used to sort with std::stable_sort,
+  // whose temporary buffer was one malloc per frame; now an insertion sort).
+  EXPECT_EQ(total, 0) << "largest allocation " << largest << " bytes, at most " << most << " in a frame";
   std::cout << "[          ] " << total << " allocation(s) in " << counted
             << " frames with three tracks (largest " << largest << " bytes)\n";
 #endif
