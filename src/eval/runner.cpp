@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
+#include <type_traits>
 
 #include <opencv2/imgproc.hpp>
 #include <opencv2/tracking.hpp>
@@ -41,67 +42,38 @@ cv::Rect initRect(const cv::Rect2f& box, const cv::Size& size) {
   return r & cv::Rect(0, 0, size.width, size.height);
 }
 
-// cv::Tracker (KCF, CSRT, MIL): integer boxes.
+// OpenCV's trackers behind EvalTracker: cv::Tracker (KCF, CSRT, MIL; integer boxes, init
+// returns nothing) and cv::legacy::Tracker (MOSSE, MedianFlow; double boxes, init reports
+// failure). A failed or throwing update keeps the last box (ANCHORS.md's convention).
+template <class TrackerT, class RectT>
 class OpenCvTracker : public EvalTracker {
  public:
-  explicit OpenCvTracker(cv::Ptr<cv::Tracker> (*factory)()) : factory_(factory) {}
+  explicit OpenCvTracker(cv::Ptr<TrackerT> (*factory)()) : factory_(factory) {}
   bool needsInitBox() const override { return true; }
   TrackerReport start(const cv::Mat& frame, double, const cv::Rect2f& box) override {
     const cv::Mat& bgr = toBgr(frame, bgr_);
     const cv::Rect r = initRect(box, bgr.size());
     if (r.empty()) throw std::runtime_error("initial box is outside the image");
     tracker_ = factory_();
-    tracker_->init(bgr, r);
+    if constexpr (std::is_same_v<RectT, cv::Rect>) {
+      tracker_->init(bgr, r);
+    } else if (!tracker_->init(bgr, RectT(r))) {
+      throw std::runtime_error("tracker init failed");
+    }
     last_ = box;
     return {box, 1.0f};
   }
   TrackerReport update(const cv::Mat& frame, double) override {
     const cv::Mat& bgr = toBgr(frame, bgr_);
-    cv::Rect r;
+    RectT r;
     bool ok = false;
     try {
       ok = tracker_->update(bgr, r);
     } catch (const cv::Exception&) {
       ok = false;  // e.g. a box that left the image: treated as a failed update
     }
-    if (ok && r.width > 0 && r.height > 0) {
-      last_ = cv::Rect2f(r);
-      return {last_, 1.0f};
-    }
-    return {last_, 0.0f};  // ANCHORS.md: a failed update keeps the last box
-  }
-
- private:
-  cv::Ptr<cv::Tracker> (*factory_)();
-  cv::Ptr<cv::Tracker> tracker_;
-  cv::Mat bgr_;
-  cv::Rect2f last_;
-};
-
-// cv::legacy::Tracker (MOSSE, MedianFlow): double boxes.
-class OpenCvLegacyTracker : public EvalTracker {
- public:
-  explicit OpenCvLegacyTracker(cv::Ptr<cv::legacy::Tracker> (*factory)()) : factory_(factory) {}
-  bool needsInitBox() const override { return true; }
-  TrackerReport start(const cv::Mat& frame, double, const cv::Rect2f& box) override {
-    const cv::Mat& bgr = toBgr(frame, bgr_);
-    const cv::Rect r = initRect(box, bgr.size());
-    if (r.empty()) throw std::runtime_error("initial box is outside the image");
-    tracker_ = factory_();
-    if (!tracker_->init(bgr, cv::Rect2d(r))) throw std::runtime_error("tracker init failed");
-    last_ = box;
-    return {box, 1.0f};
-  }
-  TrackerReport update(const cv::Mat& frame, double) override {
-    const cv::Mat& bgr = toBgr(frame, bgr_);
-    cv::Rect2d r;
-    bool ok = false;
-    try {
-      ok = tracker_->update(bgr, r);
-    } catch (const cv::Exception&) {
-      ok = false;
-    }
-    if (ok && r.width > 0 && r.height > 0 && std::isfinite(r.x) && std::isfinite(r.y)) {
+    if (ok && r.width > 0 && r.height > 0 && std::isfinite(static_cast<double>(r.x)) &&
+        std::isfinite(static_cast<double>(r.y))) {
       last_ = cv::Rect2f(r);
       return {last_, 1.0f};
     }
@@ -109,11 +81,13 @@ class OpenCvLegacyTracker : public EvalTracker {
   }
 
  private:
-  cv::Ptr<cv::legacy::Tracker> (*factory_)();
-  cv::Ptr<cv::legacy::Tracker> tracker_;
+  cv::Ptr<TrackerT> (*factory_)();
+  cv::Ptr<TrackerT> tracker_;
   cv::Mat bgr_;
   cv::Rect2f last_;
 };
+using ModernTracker = OpenCvTracker<cv::Tracker, cv::Rect>;
+using LegacyTracker = OpenCvTracker<cv::legacy::Tracker, cv::Rect2d>;
 
 cv::Ptr<cv::Tracker> makeKcf() { return cv::TrackerKCF::create(); }
 cv::Ptr<cv::Tracker> makeCsrt() { return cv::TrackerCSRT::create(); }
@@ -130,11 +104,11 @@ std::vector<std::string> knownTrackers() {
 }
 
 std::unique_ptr<EvalTracker> makeTracker(const std::string& name, const core::Params& params) {
-  if (name == "KCF") return std::make_unique<OpenCvTracker>(&makeKcf);
-  if (name == "CSRT") return std::make_unique<OpenCvTracker>(&makeCsrt);
-  if (name == "MIL") return std::make_unique<OpenCvTracker>(&makeMil);
-  if (name == "MOSSE") return std::make_unique<OpenCvLegacyTracker>(&makeMosse);
-  if (name == "MedianFlow") return std::make_unique<OpenCvLegacyTracker>(&makeMedianFlow);
+  if (name == "KCF") return std::make_unique<ModernTracker>(&makeKcf);
+  if (name == "CSRT") return std::make_unique<ModernTracker>(&makeCsrt);
+  if (name == "MIL") return std::make_unique<ModernTracker>(&makeMil);
+  if (name == "MOSSE") return std::make_unique<LegacyTracker>(&makeMosse);
+  if (name == "MedianFlow") return std::make_unique<LegacyTracker>(&makeMedianFlow);
   if (auto t = makePipelineTracker(name, params)) return t;
   std::string list;
   for (const auto& n : knownTrackers()) list += (list.empty() ? "" : ", ") + n;

@@ -276,51 +276,29 @@ void projectShape(const ShapeModel& model, const Pose& pose, std::vector<Project
   for (std::size_t k = 0; k < np; ++k) {
     const Plate& pl = model.plates[k];
     ProjectedPlate& pp = out[k];
-    Rot r = view;
-    if (pl.flap == 1 || pl.flap == -1) {
-      // Wing flap: rotate about the body x axis through the hinge, tips up for positive flap.
-      const Rot f = rotX(static_cast<float>(pl.flap) * pose.flap);
-      pp.pts.resize(pl.pts.size());
-      float depth = 0.0f;
-      cv::Point2f c(0, 0);
-      std::vector<P3> world(pl.pts.size());
-      for (std::size_t i = 0; i < pl.pts.size(); ++i) {
-        const P3 d = pl.pts[i] - pl.hinge;
-        const P3 w = view.apply(f.apply(d) + pl.hinge);
-        world[i] = w;
-        pp.pts[i] = cv::Point2f(pose.centre.x + pose.scale * w.x, pose.centre.y - pose.scale * w.y);
-        depth += w.z;
-        c += pp.pts[i];
-      }
-      pp.depth = depth / static_cast<float>(pl.pts.size());
-      pp.centroid = c * (1.0f / static_cast<float>(pl.pts.size()));
-      const P3 n = normalOf(world);
-      const float lam = std::fabs(n.x * light.x + n.y * light.y + n.z * light.z);
-      const float b = 0.55f + 0.5f * lam;
-      pp.bgr = pl.mat.bgr * b;
-      pp.thermal = pl.mat.thermal + (b - 0.8f) * 250.0f;
-      pp.alpha = pl.alpha;
-    } else {
-      pp.pts.resize(pl.pts.size());
-      float depth = 0.0f;
-      cv::Point2f c(0, 0);
-      std::vector<P3> world(pl.pts.size());
-      for (std::size_t i = 0; i < pl.pts.size(); ++i) {
-        const P3 w = r.apply(pl.pts[i]);
-        world[i] = w;
-        pp.pts[i] = cv::Point2f(pose.centre.x + pose.scale * w.x, pose.centre.y - pose.scale * w.y);
-        depth += w.z;
-        c += pp.pts[i];
-      }
-      pp.depth = depth / static_cast<float>(pl.pts.size());
-      pp.centroid = c * (1.0f / static_cast<float>(pl.pts.size()));
-      const P3 n = normalOf(world);
-      const float lam = std::fabs(n.x * light.x + n.y * light.y + n.z * light.z);
-      const float b = 0.55f + 0.5f * lam;
-      pp.bgr = pl.mat.bgr * b;
-      pp.thermal = pl.mat.thermal + (b - 0.8f) * 250.0f;
-      pp.alpha = pl.alpha;
+    // Wing flap (flap = +-1): rotate about the body x axis through the hinge, tips up for
+    // positive flap; every other plate is only turned by the view.
+    const bool flapping = pl.flap == 1 || pl.flap == -1;
+    const Rot f = rotX(flapping ? static_cast<float>(pl.flap) * pose.flap : 0.0f);
+    pp.pts.resize(pl.pts.size());
+    float depth = 0.0f;
+    cv::Point2f c(0, 0);
+    std::vector<P3> world(pl.pts.size());
+    for (std::size_t i = 0; i < pl.pts.size(); ++i) {
+      const P3 w = flapping ? view.apply(f.apply(pl.pts[i] - pl.hinge) + pl.hinge) : view.apply(pl.pts[i]);
+      world[i] = w;
+      pp.pts[i] = cv::Point2f(pose.centre.x + pose.scale * w.x, pose.centre.y - pose.scale * w.y);
+      depth += w.z;
+      c += pp.pts[i];
     }
+    pp.depth = depth / static_cast<float>(pl.pts.size());
+    pp.centroid = c * (1.0f / static_cast<float>(pl.pts.size()));
+    const P3 n = normalOf(world);
+    const float lam = std::fabs(n.x * light.x + n.y * light.y + n.z * light.z);
+    const float b = 0.55f + 0.5f * lam;
+    pp.bgr = pl.mat.bgr * b;
+    pp.thermal = pl.mat.thermal + (b - 0.8f) * 250.0f;
+    pp.alpha = pl.alpha;
     // Shading gradient across the plate: brighter towards the sun, +-15 % over its extent.
     float ext = 0.0f;
     for (const auto& p : pp.pts) ext = std::max(ext, std::fabs(p.x - pp.centroid.x) + std::fabs(p.y - pp.centroid.y));
