@@ -52,7 +52,7 @@ namespace oc = obstacle_tracker::core;
 
 namespace {
 
-std::vector<cv::Mat> makeClip(int type, cv::Rect box, int count) {
+[[maybe_unused]] std::vector<cv::Mat> makeClip(int type, cv::Rect box, int count) {
   cv::Mat bg(480, 640, CV_8UC3);
   cv::RNG rng(5);
   rng.fill(bg, cv::RNG::UNIFORM, 0, 256);

@@ -99,7 +99,7 @@ struct Clip {
   double fps = 30.0;
 };
 
-const Clip& clip() {
+[[maybe_unused]] const Clip& clip() {
   static const Clip c = [] {
     Clip k;
     os::SceneGenerator gen = os::makeScenario("multi", 1, kFrames, cv::Size(1280, 720));
@@ -114,7 +114,7 @@ const Clip& clip() {
   return c;
 }
 
-int alive(const std::vector<oc::Obstacle>& out) {
+[[maybe_unused]] int alive(const std::vector<oc::Obstacle>& out) {
   int n = 0;
   for (const auto& o : out) n += o.state != oc::TrackState::kLost ? 1 : 0;
   return n;
