@@ -22,66 +22,7 @@
 #include "obstacle_tracker/core/pipeline.h"
 #include "obstacle_tracker/scene/scene_generator.h"
 
-#if defined(__has_feature)
-#if __has_feature(address_sanitizer) || __has_feature(memory_sanitizer) || \
-    __has_feature(thread_sanitizer)
-#define OT_SANITIZED_BUILD 1
-#endif
-#endif
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-#define OT_SANITIZED_BUILD 1
-#endif
-
-#if defined(__GLIBC__) && !defined(OT_SANITIZED_BUILD)
-#define OT_COUNT_ALLOCATIONS 1
-#include <malloc.h>
-namespace {
-std::atomic<long> g_allocations{0};
-std::atomic<std::size_t> g_largest{0};  // largest block requested while counting
-std::atomic<bool> g_counting{false};
-void note(std::size_t n) {
-  if (!g_counting.load(std::memory_order_relaxed)) return;
-  g_allocations.fetch_add(1);
-  std::size_t m = g_largest.load();
-  while (n > m && !g_largest.compare_exchange_weak(m, n)) {
-  }
-}
-}  // namespace
-extern "C" {
-void* __libc_malloc(size_t);
-void* __libc_calloc(size_t, size_t);
-void* __libc_realloc(void*, size_t);
-void* __libc_memalign(size_t, size_t);
-void* malloc(size_t n) {
-  note(n);
-  return __libc_malloc(n);
-}
-void* calloc(size_t n, size_t s) {
-  note(n * s);
-  return __libc_calloc(n, s);
-}
-void* realloc(void* p, size_t n) {
-  note(n);
-  return __libc_realloc(p, n);
-}
-void* memalign(size_t a, size_t n) {
-  note(n);
-  return __libc_memalign(a, n);
-}
-void* aligned_alloc(size_t a, size_t n) {
-  note(n);
-  return __libc_memalign(a, n);
-}
-int posix_memalign(void** out, size_t a, size_t n) {
-  if (a < sizeof(void*) || (a & (a - 1)) != 0) return 22;  // EINVAL
-  note(n);
-  void* p = __libc_memalign(a, n);
-  if (p == nullptr && n != 0) return 12;  // ENOMEM
-  *out = p;
-  return 0;
-}
-}  // extern "C"
-#endif
+#include "alloc_counter.h"
 
 namespace oc = obstacle_tracker::core;
 namespace os = obstacle_tracker::scene;
