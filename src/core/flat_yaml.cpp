@@ -2,8 +2,13 @@
 //
 // Flat YAML map reader for parameter files; see flat_yaml.h for what it accepts and why it is
 // not cv::FileStorage. Scalar resolution follows the YAML 1.1 type repository (bool, int, float,
-// null) as rosparam's PyYAML applies it, with two deliberate leniencies: an exponent without a
-// dot or sign ("1e3") and the bare words inf/nan are numbers here.
+// null) as rosparam's PyYAML applies it, but is more lenient about numbers: any decimal float
+// ("1e-3", "-.5", ".5e3", "1.0e3", "1e400") is a number here where PyYAML's float pattern needs a
+// dot and a signed exponent, as are "09" (decimal), "0o17" (YAML 1.2 octal), "-inf", "-.nan"
+// and the bare words inf/nan. Such a file read by `rosparam load` gives a string instead, and
+// the nodelet then says "expected a number" and keeps the value. Not supported: sexagesimal
+// ints ("1:30"), rosparam's !degrees/!radians (the value becomes a string, with a message), and
+// multi-line quoted or flow values.
 #include "obstacle_tracker/core/flat_yaml.h"
 
 #include <algorithm>
@@ -85,10 +90,21 @@ bool decimalValue(std::string_view s, double* out) {
   double v = 0.0;
   const auto r = std::from_chars(clean.data(), clean.data() + n, v);
   if (r.ec == std::errc::result_out_of_range) {
-    // Overflow to +inf, underflow to 0 (from_chars leaves v unspecified then).
-    const std::size_t e = clean.find_first_of("eE");
-    const bool negative_exp = e != std::string::npos && e + 1 < n && clean[e + 1] == '-';
-    v = negative_exp ? 0.0 : std::numeric_limits<double>::infinity();
+    // Overflow to +inf, underflow to 0 (from_chars leaves v unspecified then): the decimal
+    // exponent of the first non-zero mantissa digit plus the written exponent decides.
+    const std::size_t e = std::min(clean.find_first_of("eE"), n);
+    const std::size_t dot = std::min(clean.find('.'), e);
+    const std::size_t first = clean.find_first_of("123456789");
+    long magnitude = first < dot ? static_cast<long>(dot - first - 1) : -static_cast<long>(first - dot);
+    if (e < n) {
+      long ex = 0;
+      std::size_t k = e + 1;
+      const bool neg = k < n && clean[k] == '-';
+      if (k < n && (clean[k] == '+' || clean[k] == '-')) ++k;
+      for (; k < n; ++k) ex = std::min(100000L, ex * 10 + (clean[k] - '0'));
+      magnitude += neg ? -ex : ex;
+    }
+    v = magnitude < 0 ? 0.0 : std::numeric_limits<double>::infinity();
   } else if (r.ec != std::errc() || r.ptr != clean.data() + n) {
     return false;
   }
@@ -188,13 +204,23 @@ bool readQuoted(std::string_view s, std::size_t* pos, std::string* out) {
   return false;
 }
 
-// Drops an anchor (&name) or tag (!!float, !tag) token in front of a value; an alias (*name)
-// is kept and resolves as a string (we do not follow references).
-std::string_view dropPropertyTokens(std::string_view v) {
+// Drops an anchor (&name) and a core-schema tag (!!int, !!float, !!bool, !!null) in front of a
+// value; the token ends at a blank or at one of `stop` (",}" in a flow map). Any other tag
+// (!!str, rosparam's !degrees / !radians, a local !tag) is reported through *other_tag and the
+// value is then taken as a string (we do not convert units). An alias (*name) is kept and
+// resolves as a string (we do not follow references).
+std::string_view dropPropertyTokens(std::string_view v, std::string_view stop, std::string* other_tag) {
   for (int k = 0; k < 2 && !v.empty() && (v.front() == '&' || v.front() == '!'); ++k) {
     std::size_t end = 0;
-    while (end < v.size() && !isBlank(v[end])) ++end;
-    v = trim(v.substr(end));
+    while (end < v.size() && !isBlank(v[end]) && stop.find(v[end]) == std::string_view::npos) ++end;
+    const std::string_view token = v.substr(0, end);
+    if (token.front() == '!' && token != "!!int" && token != "!!float" && token != "!!bool" &&
+        token != "!!null") {
+      *other_tag = std::string(token);
+    }
+    v.remove_prefix(end);
+    // Leading blanks only: the caller counts the characters that are left.
+    while (!v.empty() && isBlank(v.front())) v.remove_prefix(1);
   }
   return v;
 }
@@ -230,7 +256,8 @@ std::string_view stripComment(std::string_view s) {
 std::size_t readValue(std::string_view s, std::string_view stop, FlatYamlEntry* e, int line) {
   std::size_t i = 0;
   while (i < s.size() && isBlank(s[i])) ++i;
-  std::string_view rest = dropPropertyTokens(s.substr(i));
+  std::string other_tag;
+  std::string_view rest = dropPropertyTokens(s.substr(i), stop, &other_tag);
   i = s.size() - rest.size();
   if (rest.empty() || stop.find(rest.front()) != std::string_view::npos) {
     e->kind = FlatYamlEntry::kNull;
@@ -251,10 +278,19 @@ std::size_t readValue(std::string_view s, std::string_view stop, FlatYamlEntry* 
     for (; j < rest.size(); ++j) {
       const char d = rest[j];
       if (quote) {
-        if (d == quote) quote = 0;
+        if (quote == '"' && d == '\\') {
+          ++j;  // escaped character
+        } else if (d == quote) {
+          quote = 0;
+        }
         continue;
       }
-      if (d == '"' || d == '\'') quote = d;
+      // A quote opens a scalar only where a scalar can start (it's, a"b are plain text).
+      const char before = j == 0 ? ' ' : rest[j - 1];
+      if ((d == '"' || d == '\'') &&
+          (isBlank(before) || before == '[' || before == '{' || before == ',' || before == ':')) {
+        quote = d;
+      }
       if (d == '{' || d == '[') ++depth;
       if (d == '}' || d == ']') {
         if (--depth == 0) break;
@@ -273,6 +309,10 @@ std::size_t readValue(std::string_view s, std::string_view stop, FlatYamlEntry* 
   std::size_t j = 0;
   while (j < rest.size() && stop.find(rest[j]) == std::string_view::npos) ++j;
   resolvePlain(trim(rest.substr(0, j)), e);
+  if (!other_tag.empty() && e->kind != FlatYamlEntry::kNull) {
+    e->kind = FlatYamlEntry::kString;  // e.g. !degrees 90: not converted, so not a number
+    e->text = other_tag + " " + e->text;
+  }
   return i + j;
 }
 
@@ -346,6 +386,10 @@ std::vector<FlatYamlEntry> parseFlow(std::string_view text, int first_line) {
   }
   if (!closed) parseError(lineAt(s.size()), "unclosed '{'");
   skipBlank();
+  if (s.substr(i, 3) == "...") {  // a document end marker may follow
+    i += 3;
+    skipBlank();
+  }
   if (i < s.size()) parseError(lineAt(i), "text after the closing '}'");
   return entries;
 }
@@ -353,11 +397,21 @@ std::vector<FlatYamlEntry> parseFlow(std::string_view text, int first_line) {
 }  // namespace
 
 std::vector<FlatYamlEntry> parseFlatYaml(const std::string& input) {
+  // Old Mac line ends (CR only) become LF; CRLF is handled per line.
+  std::string storage;
   std::string_view text(input);
+  if (text.find('\n') == std::string_view::npos && text.find('\r') != std::string_view::npos) {
+    storage = input;
+    std::replace(storage.begin(), storage.end(), '\r', '\n');
+    text = storage;
+  }
   if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);  // UTF-8 byte order mark
   std::vector<FlatYamlEntry> entries;
-  bool content = false;        // a key or the flow map has been seen
-  bool absorb_indented = false;  // indented lines belong to the last entry's value
+  bool content = false;  // a key or the flow map has been seen
+  // What indented lines after the last key mean: nothing (an error), its value (it was
+  // empty: `k:` then `  1.5`), a continued plain scalar, a block scalar's text, or a nested
+  // collection (ignored by the caller with a message).
+  enum class Tail { kNone, kEmpty, kPlain, kBlock, kNested } tail = Tail::kNone;
   int line = 0;
   std::size_t start = 0;
   while (start < text.size()) {
@@ -370,21 +424,44 @@ std::vector<FlatYamlEntry> parseFlatYaml(const std::string& input) {
     std::string_view l = stripComment(raw);
     while (!l.empty() && (isBlank(l.back()) || l.back() == '\r')) l.remove_suffix(1);
     if (trim(l).empty()) continue;
-    if (!content && l.front() == '%') continue;  // directive (%YAML 1.1, %TAG)
+    if (l.front() == '%') continue;  // directive (%YAML 1.1, %TAG)
+    // Document markers: rosparam loads every document of a file into the same namespace, so
+    // later documents add to (and override) the earlier ones here too.
+    if (l == "..." || l.substr(0, 4) == "... ") {
+      tail = Tail::kNone;
+      continue;
+    }
     if (l.substr(0, 3) == "---" && (l.size() == 3 || isBlank(l[3]))) {
-      if (content) parseError(line, "a second YAML document; parameter files hold one map");
+      tail = Tail::kNone;
       l = trim(l.substr(3));
       if (l.empty()) continue;
     }
-    if (l == "..." || l.substr(0, 4) == "... ") break;  // end of the document
     const std::size_t indent = l.find_first_not_of(" \t");
-    if (indent > 0 || l.substr(0, 2) == "- " || l == "-") {
-      // Indented lines, or a block list under the previous key, belong to that key's value.
-      if (absorb_indented && !entries.empty()) {
-        if (entries.back().kind == FlatYamlEntry::kNull) entries.back().kind = FlatYamlEntry::kNested;
-        continue;
+    const std::string_view body = trim(l);
+    const bool list_item = body.substr(0, 2) == "- " || body == "-";
+    if (indent > 0 || list_item) {
+      if (!entries.empty()) {
+        FlatYamlEntry& last = entries.back();
+        if (tail == Tail::kEmpty) {
+          if (indent > 0 && !list_item && plainKeyColon(body) == std::string_view::npos &&
+              std::string_view("[{\"'|>&!*").find(body.front()) == std::string_view::npos) {
+            resolvePlain(body, &last);  // `k:` then an indented scalar is `k: scalar`
+            tail = Tail::kPlain;
+          } else {
+            last.kind = FlatYamlEntry::kNested;
+            tail = Tail::kNested;
+          }
+          continue;
+        }
+        if (tail == Tail::kPlain && indent > 0 && !list_item &&
+            plainKeyColon(body) == std::string_view::npos) {
+          last.kind = FlatYamlEntry::kString;  // a plain scalar over several lines: folded text
+          last.text += " " + std::string(body);
+          continue;
+        }
+        if (tail == Tail::kBlock || tail == Tail::kNested) continue;
       }
-      if (!content && (l.front() == '-')) {
+      if (!content && list_item) {
         parseError(line, "expected a map of parameter names to values, found a list");
       }
       parseError(line, "unexpected indentation (parameter files are flat 'name: value' maps)");
@@ -420,7 +497,17 @@ std::vector<FlatYamlEntry> parseFlatYaml(const std::string& input) {
       parseError(line, "unexpected text after the value of '" + e.key + "'");
     }
     const char first = trim(value).empty() ? '\0' : trim(value).front();
-    absorb_indented = e.kind == FlatYamlEntry::kNull || first == '|' || first == '>';
+    if (e.kind == FlatYamlEntry::kNull && first == '\0') {
+      tail = Tail::kEmpty;
+    } else if (first == '|' || first == '>') {
+      tail = Tail::kBlock;
+    } else if (e.kind == FlatYamlEntry::kNested) {
+      tail = Tail::kNested;
+    } else if (first == '"' || first == '\'') {
+      tail = Tail::kNone;
+    } else {
+      tail = Tail::kPlain;
+    }
     entries.push_back(std::move(e));
     content = true;
   }

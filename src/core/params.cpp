@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <limits>
@@ -177,10 +178,15 @@ Params loadParamsText(const std::string& yaml, const std::string& what,
 
 Params loadParamsFile(const std::string& path, std::vector<std::string>* messages,
                       const Params& base) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    throw std::runtime_error("cannot read parameter file '" + path + "': it is a directory");
+  }
   std::ifstream in(path);
   if (!in) throw std::runtime_error("cannot open parameter file '" + path + "'");
   std::stringstream text;
   text << in.rdbuf();
+  if (in.bad()) throw std::runtime_error("cannot read parameter file '" + path + "'");
   return loadParamsText(text.str(), path, messages, base);
 }
 

@@ -7,7 +7,8 @@
 // Per track, per frame:
 //   tracking     KcfTracker::update. peak >= peak_threshold: the new box is kept. Otherwise the
 //                track re-detects in the same frame.
-//   re-detecting candidates = the filter's own answer at the predicted position plus the salient
+//   re-detecting the filter's own answer (update without learning) counts when its peak passes the
+//                re-detection test; otherwise the candidates are the salient
 //                regions inside search_window_scale x the box around the prediction (constant
 //                velocity since the last good frame); each gets a prior from its saliency, its
 //                distance to the prediction and its size/aspect against the last box; the best
@@ -15,8 +16,8 @@
 //                no state change) and the best verified one whose peak >= redetect_min_peak is
 //                accepted: the filter restarts (init) on its box, so the box takes the object's
 //                current size and shape. After a failed frame, a candidate alone in the window
-//                (high prior, no rival) is accepted on half the peak threshold (the target's
-//                surroundings changed under the model). A frame without an accepted candidate is a failure; more
+//                (high prior, no rival) is accepted at redetect_solo_peak x the peak threshold
+//                (the target's surroundings changed under the model). A frame without an accepted candidate is a failure; more
 //                than max_redetect_failures consecutive failures end the track (reported once
 //                with state kLost, then removed).
 //   searching    while there is room for a track, AutoInitializer is fed every
@@ -54,8 +55,7 @@ constexpr float kMinSearchBoxSide = 16.0f;   // px; the window is search_window_
 constexpr float kWindowGrowthPerFailure = 0.5f;
 constexpr float kMaxWindowGrowth = 3.0f;
 constexpr float kSoloPrior = 0.8f;           // re-detection: a candidate alone in the window ...
-constexpr float kSoloMargin = 0.5f;          // ... (every other prior below this x its own) ...
-constexpr float kSoloPeak = 0.5f;            // ... needs only this x peak_threshold to be accepted
+constexpr float kSoloMargin = 0.5f;          // ... (every other prior below this x its own)
 constexpr float kMaxResize = 1.5f;           // a re-detected box side is within 1/1.5..1.5 x the last
 
 float iou(const cv::Rect2f& a, const cv::Rect2f& b) {
@@ -344,11 +344,13 @@ struct Pipeline::Impl {
     // sky into a dark ground band: the model, learned on sky, answers 0.08-0.10 there against
     // 0.05-0.07 for clutter, below the relative test). So a candidate that is alone in the
     // window in the saliency sense (prior >= kSoloPrior, every other prior below kSoloMargin x
-    // its own), is accepted on a weaker verification (kSoloPeak x peak_threshold) once the
-    // ordinary verification has failed on an earlier frame.
-    if (best < 0 && t.failures > 0 && verify > 0 && candidates[0].prior >= kSoloPrior &&
+    // its own), is accepted on a weaker verification (redetect_solo_peak x peak_threshold) once
+    // the ordinary verification has failed on an earlier frame. It bypasses the relative test
+    // that keeps occluders and birds out, so it is a parameter (0 switches it off).
+    if (best < 0 && params.redetect_solo_peak > 0.0 && t.failures > 0 && verify > 0 &&
+        candidates[0].prior >= kSoloPrior &&
         (candidates.size() < 2 || candidates[1].prior < kSoloMargin * candidates[0].prior) &&
-        first_result.peak >= kSoloPeak * static_cast<float>(params.peak_threshold)) {
+        first_result.peak >= static_cast<float>(params.redetect_solo_peak * params.peak_threshold)) {
       best = 0;
       best_result = first_result;
     }
@@ -364,8 +366,8 @@ struct Pipeline::Impl {
     }
     if (best < 0) return false;
     const Candidate& c = candidates[static_cast<std::size_t>(best)];
-    // The filter's own candidate: keep its box (its size); a salient region: its own box, so the
-    // box takes the object's current size and shape (the paper's re-initialisation).
+    // The salient region's own box, so the box takes the object's current size and shape (the
+    // paper's re-initialisation).
     cv::Rect2f box = c.box;
     {
       // The region's size and shape, within a band around the last good box: Otsu regions of a

@@ -84,6 +84,7 @@ TEST(Params, YamlLoaderReportsBadValuesAndNeverThrowsOnContent) {
   EXPECT_DOUBLE_EQ(p.search_window_scale, oc::Params().search_window_scale);
   EXPECT_GE(messages.size(), 4u);
   EXPECT_THROW(oc::loadParamsFile("/nonexistent/params.yaml", &messages), std::runtime_error);
+  EXPECT_THROW(oc::loadParamsFile("/tmp", &messages), std::runtime_error);  // a directory
   EXPECT_THROW(oc::loadParamsString("[unclosed", &messages), std::runtime_error);
 }
 

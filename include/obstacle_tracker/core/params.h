@@ -43,7 +43,9 @@ namespace core {
   X(int, redetect_candidates, 3, 1, 16, "",                                                        \
     "salient regions per re-detection verified against the filter model")                         \
   X(double, redetect_relative_threshold, 0.7, 0.0, 1.0, "",                                        \
-    "a re-detected region's verification peak must reach this fraction of the running mean peak")
+    "a re-detected region's verification peak must reach this fraction of the running mean peak") \
+  X(double, redetect_solo_peak, 0.5, 0.0, 1.0, "",                                                 \
+    "after a failed frame, a salient region alone in the window needs this x peak_threshold (0 = off)")
 
 // Saliency detector (FastMBD, Otsu, regions, auto-initialisation).
 #define OT_SALIENCY_PARAMS(X)                                                                      \
