@@ -20,9 +20,12 @@
 //      least 60 % of the frames since it appeared) and, when auto_init_min_motion > 0, once it
 //      has moved that far against both the image (an overlay or a target the camera keeps still
 //      stays put in the image) and the background (a static scene object moves exactly with the
-//      background);
+//      background), or, when auto_init_min_growth > 0, once its object pixels (P >= 0.1 x its
+//      peak around the core) have grown steadily by that much in ln sqrt(pixels) over its
+//      history: an obstacle on a collision course keeps its bearing and only grows. Still
+//      candidates (pixels unchanged for 3 frames) are kept for this cue only;
 //   5. score of a confirmed track: mean peak of P x seen share x min(1, motion / (3 x
-//      auto_init_min_motion)); with auto_init_horizon_prior, a track below the horizon (the
+//      auto_init_min_motion)) (or growth / (3 x auto_init_min_growth)); with auto_init_horizon_prior, a track below the horizon (the
 //      strongest row-mean step of the shrunk frame) needs twice the frames and scores x 0.5;
 //   6. the box of a confirmed track is refined by the saliency detector (FastMBD + Otsu) in a
 //      window of 4 x the box (at least 32 px) at native resolution, when its best region
@@ -56,6 +59,9 @@ constexpr double kRefineWindowScale = 4.0;  // window around a confirmed candida
 constexpr float kRefineMaxGrowth = 16.0f;   // a refined box may cover at most 16 x the candidate's
 constexpr float kMaxAspect = 4.5f;      // candidate boxes more elongated are lines
 constexpr double kMinLinearity = 0.5;   // share of position variance a steady motion explains
+constexpr float kSizeShare = 0.1f;      // growth cue: object pixels are P >= this x the peak
+constexpr int kMinGrowthSamples = 12;  // history points before growth can confirm a track
+constexpr double kMinGrowthFit = 0.6;   // share of the log-size variance the growth line explains
 constexpr int kLag = 4;                 // frames back for the appearance-change test
 constexpr double kMinChange = 0.5;      // appearance change / local contrast of a moving target  // a candidate's region: pixels >= this share of its peak
 
@@ -66,6 +72,8 @@ struct Candidate {
   float peak = 0.0f, mean = 0.0f;
   bool touches_border = false;
   int stamp = -1;  // label of its region in the stamp image
+  int size_px = 0;  // pixels of the object above kSizeShare x its peak (growth cue)
+  bool still = false;  // its pixels have not changed for kStillFrames frames
 };
 
 constexpr int kHistory = 32;  // positions kept per track for the motion fit
@@ -74,10 +82,12 @@ struct Track {
   // Ring buffer of (frame, image position, image position minus background displacement).
   std::array<int, kHistory> frames;
   std::array<cv::Point2f, kHistory> img, rel;
+  std::array<float, kHistory> log_size;  // ln sqrt(size_px): the growth cue's size
   int count = 0;
-  void remember(int frame, cv::Point2f p, cv::Point2d background) {
+  void remember(int frame, cv::Point2f p, cv::Point2d background, int size_px) {
     const int k = count % kHistory;
     frames[k] = frame;
+    log_size[k] = 0.5f * std::log(static_cast<float>(std::max(1, size_px)));
     img[k] = p;
     rel[k] = p - cv::Point2f(static_cast<float>(background.x), static_cast<float>(background.y));
     ++count;
@@ -87,6 +97,7 @@ struct Track {
   int first_frame = 0, last_frame = 0, hits = 0, area = 0;
   double sum_peak = 0.0, last_mean = 0.0;
   bool touches_border = false;
+  bool still = false;  // its last candidate was still (can only be confirmed by growth)
 };
 
 }  // namespace
@@ -318,7 +329,8 @@ struct AutoInitializer::Impl {
       // border-glued structure the target touches at 0.3 x its peak.)
       const int seed_stamp = stamp[static_cast<size_t>(seed.y) * cols + seed.x];
       bool same = false;
-      for (size_t j = 0; j < kept && !same; ++j) same = candidates[j].stamp == seed_stamp;
+      // (Still candidates do not count: a target passing over an overlay is not the overlay.)
+      for (size_t j = 0; j < kept && !same; ++j) same = candidates[j].stamp == seed_stamp && !candidates[j].still;
       if (same) continue;
       ++stamp_value;
       c.stamp = stamp_value;
@@ -347,14 +359,30 @@ struct AutoInitializer::Impl {
             queue.push_back(ny * cols + nx);
           }
       }
+      {
+        // Size measure for the growth cue: pixels of P >= kSizeShare x the peak in a window
+        // around the grown core (thin parts of a silhouette, e.g. wings, stay under the core's
+        // 0.3 x peak but above this).
+        const int r = 2 * std::max(x1 - x0 + 1, y1 - y0 + 1) + 4;
+        const int thr_s = std::max(1, static_cast<int>(std::ceil(kSizeShare * c.peak)));
+        const int sx0 = std::max(0, (x0 + x1) / 2 - r), sx1 = std::min(cols - 1, (x0 + x1) / 2 + r);
+        const int sy0 = std::max(0, (y0 + y1) / 2 - r), sy1 = std::min(rows - 1, (y0 + y1) / 2 + r);
+        int count = 0;
+        for (int y = sy0; y <= sy1; ++y) {
+          const uchar* row = p.ptr<uchar>(y);
+          for (int x = sx0; x <= sx1; ++x) count += row[x] >= thr_s;
+        }
+        c.size_px = count;
+      }
       c.area = static_cast<int>(queue.size());
       c.mean = static_cast<float>(sum / c.area);
       c.box = cv::Rect(cv::Point(x0, y0), cv::Point(x1 + 1, y1 + 1));
       c.centre = cv::Point2f(0.5f * (x0 + x1 + 1), 0.5f * (y0 + y1 + 1));
       c.touches_border = x0 == 0 || y0 == 0 || x1 == cols - 1 || y1 == rows - 1;
       if (c.touches_border && params.reject_border_regions) continue;
-      // Box area: the grown core of a target of a few pixels is smaller than the target.
-      if (c.box.area() < params.min_object_area || c.area > max_area) continue;
+      // Size: the grown core of a target of a few pixels (or of a thin silhouette) is smaller than
+      // the target, so the object pixels (size_px) count too.
+      if (std::max(c.box.area(), c.size_px) < params.min_object_area || c.area > max_area) continue;
       if (params.auto_init_reject_static && frame_index > 0) {
         // Share of the box's pixels, or of the region's own pixels, unchanged for kStillFrames
         // frames: an overlay (or a static scene under a still camera). A moving target changes
@@ -366,14 +394,19 @@ struct AutoInitializer::Impl {
           for (int x = c.box.x; x < c.box.x + c.box.width; ++x) still_px += sc[x] >= kStillFrames;
         }
         for (const int q : queue) still_region += still.ptr<uchar>(q / cols)[q % cols] >= kStillFrames;
-        if (still_px >= kStillShare * c.box.area() || still_region >= kStillShare * c.area) continue;
+        // Kept, flagged: an obstacle on a collision course keeps its bearing and changes only at
+        // its rim, so it looks still too; it can be confirmed by growth, never by motion.
+        c.still = still_px >= kStillShare * c.box.area() || still_region >= kStillShare * c.area;
+        if (c.still && params.auto_init_min_growth <= 0.0) continue;
       }
       candidates[kept++] = c;
     }
     candidates.resize(kept);
     if (params.auto_init_reject_text) rejectTextRows();
     // Best peaks first (ties: larger mean), at most auto_init_candidates.
+    // Still candidates after the others, so that they never take a moving one's place.
     std::stable_sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
+      if (a.still != b.still) return b.still;
       return a.peak != b.peak ? a.peak > b.peak : a.mean > b.mean;
     });
     if (static_cast<int>(candidates.size()) > params.auto_init_candidates)
@@ -436,7 +469,8 @@ struct AutoInitializer::Impl {
         tr.sum_peak += c.peak;
         tr.last_mean = c.mean;
         tr.touches_border = c.touches_border;
-        tr.remember(frame_index, c.centre, background);
+        tr.still = c.still;
+        tr.remember(frame_index, c.centre, background, c.size_px);
       } else if (tracks.size() < kMaxTracks) {
         Track tr;
         tr.centre = c.centre;
@@ -448,7 +482,8 @@ struct AutoInitializer::Impl {
         tr.sum_peak = c.peak;
         tr.last_mean = c.mean;
         tr.touches_border = c.touches_border;
-        tr.remember(frame_index, c.centre, background);
+        tr.still = c.still;
+        tr.remember(frame_index, c.centre, background, c.size_px);
         tracks.push_back(tr);
       }
     }
@@ -539,6 +574,39 @@ struct AutoInitializer::Impl {
     return span * std::min(ni, nr) / stt;
   }
 
+  // Growth of a track over its remembered history: the least-squares line through ln sqrt(size_px)
+  // (its object pixels, see findCandidates) against time, times the time span (so 0.2 = the size grew by e^0.2 = 22 %). An obstacle
+  // on a collision course keeps its bearing, so it has no motion across the image or against
+  // the background to confirm it by; its growth is the cue (looming, as in the TTC literature:
+  // Lee 1976). `fit` receives the share of the log sizes' variance the line explains (a region
+  // whose extent fluctuates grows and shrinks without a trend). Needs kMinGrowthSamples points.
+  static double growthOf(const Track& t, double* fit) {
+    const int n = std::min(t.count, kHistory);
+    *fit = 0.0;
+    if (n < kMinGrowthSamples) return 0.0;
+    double mt = 0.0, ms = 0.0;
+    int t_lo = INT32_MAX, t_hi = INT32_MIN;
+    for (int k = 0; k < n; ++k) {
+      mt += t.frames[k];
+      ms += t.log_size[k];
+      t_lo = std::min(t_lo, t.frames[k]);
+      t_hi = std::max(t_hi, t.frames[k]);
+    }
+    mt /= n;
+    ms /= n;
+    double stt = 0.0, sts = 0.0, sss = 0.0;
+    for (int k = 0; k < n; ++k) {
+      const double dt = t.frames[k] - mt, ds = t.log_size[k] - ms;
+      stt += dt * dt;
+      sts += dt * ds;
+      sss += ds * ds;
+    }
+    if (stt <= 0.0) return 0.0;
+    const double slope = sts / stt;
+    *fit = sss > 0.0 ? slope * sts / sss : 0.0;
+    return slope * (t_hi - t_lo);
+  }
+
   static SalientRegion toRegion(const cv::Rect& box, int area, double mean, double score, bool border) {
     SalientRegion r;
     r.box = cv::Rect2f(box);
@@ -577,7 +645,7 @@ struct AutoInitializer::Impl {
       const double seen = static_cast<double>(t.hits) / age;
       if (params.auto_init_frames > 1 && seen < 0.6) continue;
       if (params.auto_init_shape_filter && isLine(t.box)) continue;
-      if (params.auto_init_min_motion > 0.0 && !changedAgainstBackground(t.box)) continue;
+
       double score = t.sum_peak / (255.0 * t.hits) * seen;
       if (params.auto_init_min_motion > 0.0) {
         double linearity = 0.0;
@@ -586,9 +654,16 @@ struct AutoInitializer::Impl {
         // fluctuates (a textured structure grown at 0.3 x its peak) moves its centre by a
         // fraction of its size without going anywhere.
         const double needed = std::max(params.auto_init_min_motion, 0.5 * std::max(t.box.width, t.box.height));
-        if (motion < needed || linearity < kMinLinearity) continue;
-        // Steady motion raises the score up to 3x the threshold.
-        score *= std::min(1.0, motion / (3.0 * params.auto_init_min_motion));
+        if (!t.still && motion >= needed && linearity >= kMinLinearity && changedAgainstBackground(t.box)) {
+          // Steady motion raises the score up to 3x the threshold.
+          score *= std::min(1.0, motion / (3.0 * params.auto_init_min_motion));
+        } else {
+          // No motion: a collision course shows as steady growth instead.
+          double fit = 0.0;
+          const double growth = params.auto_init_min_growth > 0.0 ? growthOf(t, &fit) : 0.0;
+          if (!(growth >= params.auto_init_min_growth) || fit < kMinGrowthFit) continue;
+          score *= std::min(1.0, growth / (3.0 * params.auto_init_min_growth));
+        }
       }
       if (below) score *= 0.5;
       SalientRegion region = toRegion(t.box, t.area, t.last_mean, score, t.touches_border);

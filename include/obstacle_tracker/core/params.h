@@ -66,6 +66,8 @@ namespace core {
     "frames a candidate must be seen before auto-initialisation confirms it (1 = single frame)")  \
   X(double, auto_init_min_motion, 4.0, 0.0, 1000.0, "px",                                          \
     "displacement against both the image and the background needed to confirm (0 = cue off)")    \
+  X(double, auto_init_min_growth, 0.2, 0.0, 10.0, "",                                              \
+    "or steady growth of ln(size) over the candidate's history (collision course; 0 = cue off)")  \
   X(bool, auto_init_local_contrast, true, false, true, "",                                         \
     "auto-init candidates from native-resolution local contrast x MBD (false: MBD alone)")       \
   X(bool, auto_init_horizon_prior, false, false, true, "",                                         \
