@@ -47,6 +47,7 @@ namespace core {
 namespace {
 
 constexpr float kVelocitySmoothing = 0.5f;   // weight of the newest displacement in the EMA
+constexpr double kMinVelocityDt = 1e-4;      // s; shorter frame intervals give no velocity
 constexpr float kMaxPredictionBoxes = 2.0f;  // predicted shift capped at this many box sides
 constexpr float kDistanceSigma = 0.5f;       // distance prior sigma, fraction of the window side
 constexpr float kSizeSigma = 0.7f;           // size prior sigma on |ln(area ratio)| / 2
@@ -257,10 +258,14 @@ struct Pipeline::Impl {
 
   void acceptGood(Track& t, const cv::Rect2f& box, double stamp, bool restarted) {
     const double dt = stamp - t.good_stamp;
-    if (dt > 0.0) {
+    // Stamps microseconds apart (or a huge jump) give no usable velocity: a float overflow to
+    // infinity here became a NaN box in predict() (fuzz_pipeline, test_robust_fuzz.cpp).
+    if (dt > kMinVelocityDt) {
       const cv::Point2f v = (centre(box) - centre(t.good_box)) * static_cast<float>(1.0 / dt);
-      t.velocity = t.have_velocity ? (1.0f - kVelocitySmoothing) * t.velocity + kVelocitySmoothing * v : v;
-      t.have_velocity = true;
+      if (std::isfinite(v.x) && std::isfinite(v.y)) {
+        t.velocity = t.have_velocity ? (1.0f - kVelocitySmoothing) * t.velocity + kVelocitySmoothing * v : v;
+        t.have_velocity = true;
+      }
     }
     if (restarted) t.looming.markDiscontinuity();
     t.looming.add(stamp, box);
@@ -277,7 +282,11 @@ struct Pipeline::Impl {
       shift = t.velocity * static_cast<float>(stamp - t.good_stamp);
       const float cap = kMaxPredictionBoxes * std::max(t.good_box.width, t.good_box.height);
       const float n = std::hypot(shift.x, shift.y);
-      if (n > cap) shift *= cap / n;
+      if (!std::isfinite(n)) {
+        shift = cv::Point2f(0.0f, 0.0f);  // e.g. a stamp jump of years times a velocity
+      } else if (n > cap) {
+        shift *= cap / n;
+      }
     }
     return clampCentre(centredAt(centre(t.good_box) + shift, t.good_box.size()), frame_size);
   }
