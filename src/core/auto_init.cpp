@@ -20,7 +20,9 @@
 //      least 60 % of the frames since it appeared) and, when auto_init_min_motion > 0, once it
 //      has moved that far against both the image (an overlay or a target the camera keeps still
 //      stays put in the image) and the background (a static scene object moves exactly with the
-//      background), or, when auto_init_min_growth > 0, once its object pixels (P >= 0.1 x its
+//      background) and vacated its old place (the local contrast there, carried with the
+//      background, has fallen under half of what it was: a peak wandering along a static lattice
+//      or edge leaves the structure behind), or, when auto_init_min_growth > 0, once its object pixels (P >= 0.1 x its
 //      peak around the core) have grown steadily by that much in ln sqrt(pixels) over its
 //      history: an obstacle on a collision course keeps its bearing and only grows. Still
 //      candidates (pixels unchanged for 3 frames) are kept for this cue only;
@@ -62,6 +64,7 @@ constexpr double kMinLinearity = 0.5;   // share of position variance a steady m
 constexpr float kSizeShare = 0.1f;      // growth cue: object pixels are P >= this x the peak
 constexpr int kMinGrowthSamples = 12;  // history points before growth can confirm a track
 constexpr double kMinGrowthFit = 0.6;   // share of the log-size variance the growth line explains
+constexpr double kVacated = 0.5;        // motion cue: contrast left at the old place / now
 constexpr int kLag = 4;                 // frames back for the appearance-change test
 constexpr double kMinChange = 0.5;      // appearance change / local contrast of a moving target  // a candidate's region: pixels >= this share of its peak
 
@@ -83,10 +86,12 @@ struct Track {
   std::array<int, kHistory> frames;
   std::array<cv::Point2f, kHistory> img, rel;
   std::array<float, kHistory> log_size;  // ln sqrt(size_px): the growth cue's size
+  std::array<int, kHistory> contrast;    // local contrast at the position then (vacated test)
   int count = 0;
-  void remember(int frame, cv::Point2f p, cv::Point2d background, int size_px) {
+  void remember(int frame, cv::Point2f p, cv::Point2d background, int size_px, int local_contrast) {
     const int k = count % kHistory;
     frames[k] = frame;
+    contrast[k] = local_contrast;
     log_size[k] = 0.5f * std::log(static_cast<float>(std::max(1, size_px)));
     img[k] = p;
     rel[k] = p - cv::Point2f(static_cast<float>(background.x), static_cast<float>(background.y));
@@ -470,7 +475,7 @@ struct AutoInitializer::Impl {
         tr.last_mean = c.mean;
         tr.touches_border = c.touches_border;
         tr.still = c.still;
-        tr.remember(frame_index, c.centre, background, c.size_px);
+        tr.remember(frame_index, c.centre, background, c.size_px, contrastAround(c.centre));
       } else if (tracks.size() < kMaxTracks) {
         Track tr;
         tr.centre = c.centre;
@@ -483,7 +488,7 @@ struct AutoInitializer::Impl {
         tr.last_mean = c.mean;
         tr.touches_border = c.touches_border;
         tr.still = c.still;
-        tr.remember(frame_index, c.centre, background, c.size_px);
+        tr.remember(frame_index, c.centre, background, c.size_px, contrastAround(c.centre));
         tracks.push_back(tr);
       }
     }
@@ -520,6 +525,35 @@ struct AutoInitializer::Impl {
       }
     }
     return diff_sum >= kMinChange * (contrast_sum + a2.area());
+  }
+
+  // Largest local contrast in the 5x5 px around c (-1 outside the frame).
+  int contrastAround(cv::Point2f c) const {
+    if (contrast_map.empty()) return -1;
+    const int cx = static_cast<int>(std::lround(c.x)), cy = static_cast<int>(std::lround(c.y));
+    int best = -1;
+    for (int y = std::max(0, cy - 2); y <= std::min(contrast_map.rows - 1, cy + 2); ++y) {
+      const uchar* row = contrast_map.ptr<uchar>(y);
+      for (int x = std::max(0, cx - 2); x <= std::min(contrast_map.cols - 1, cx + 2); ++x) {
+        best = std::max(best, static_cast<int>(row[x]));
+      }
+    }
+    return best;
+  }
+
+  // Vacated-position test for the motion cue: a mover leaves its old place to the background; a
+  // candidate whose peak wanders along a static structure (a lattice tower under camera jitter,
+  // an edge) leaves the structure where it was. The local contrast now at the track's oldest
+  // remembered position (carried with the background to this frame) must have fallen below
+  // kVacated x what it was when the track was there (maxima over 5x5 px).
+  bool vacated(const Track& t) const {
+    const int n = std::min(t.count, kHistory);
+    if (n < 2 || contrast_map.empty()) return true;
+    const size_t oldest = static_cast<size_t>(t.count <= kHistory ? 0 : t.count % kHistory);
+    const cv::Point2f bg(static_cast<float>(background.x), static_cast<float>(background.y));
+    const int now = contrastAround(t.rel[oldest] + bg);
+    if (now < 0 || t.contrast[oldest] <= 0) return true;  // its old place has left the frame
+    return now < kVacated * t.contrast[oldest];
   }
 
   // Thin lines (reticles, poles, road markings): aspect above kMaxAspect.
@@ -654,7 +688,8 @@ struct AutoInitializer::Impl {
         // fluctuates (a textured structure grown at 0.3 x its peak) moves its centre by a
         // fraction of its size without going anywhere.
         const double needed = std::max(params.auto_init_min_motion, 0.5 * std::max(t.box.width, t.box.height));
-        if (!t.still && motion >= needed && linearity >= kMinLinearity && changedAgainstBackground(t.box)) {
+        if (!t.still && motion >= needed && linearity >= kMinLinearity && changedAgainstBackground(t.box) &&
+            vacated(t)) {
           // Steady motion raises the score up to 3x the threshold.
           score *= std::min(1.0, motion / (3.0 * params.auto_init_min_motion));
         } else {
