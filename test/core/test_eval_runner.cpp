@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -34,7 +36,9 @@ Rect2f truth(int i) {
 
 // A textured dark square moving over a smooth bright gradient; frames 0..2 are empty sky.
 fs::path writeSequence(const std::string& tag) {
-  const fs::path dir = fs::temp_directory_path() / ("ot_test_eval_runner_" + tag);
+  // Unique per process: two test runs at once (e.g. a sanitizer build's) must not share files.
+  const fs::path dir =
+      fs::temp_directory_path() / ("ot_test_eval_runner_" + tag + "_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir / "img");
   std::mt19937 rng(11);

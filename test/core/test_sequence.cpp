@@ -6,6 +6,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/videoio.hpp>
@@ -37,7 +39,7 @@ void expectBox(const cv::Rect2f& b, float x, float y, float w, float h) {
 
 fs::path tempDir(const std::string& name) {
   const fs::path d = fs::temp_directory_path() /
-                     ("ot_test_sequence_" + name + "_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+                     ("ot_test_sequence_" + name + "_" + std::to_string(::getpid()));  // unique per process
   fs::remove_all(d);
   fs::create_directories(d);
   return d;
