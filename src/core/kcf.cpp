@@ -8,6 +8,7 @@
 #include "obstacle_tracker/core/kcf.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -33,6 +34,7 @@ constexpr float kMinTargetSide = 4.0f;    // scale search never shrinks a side b
 constexpr float kMaxPsr = 100.0f;
 constexpr float kScaleModelArea = 512.0f;  // DSST's scale model size (32 x 16 px)
 constexpr float kScaleLambda = 0.01f;      // DSST's regulariser
+constexpr int kMaxScaleCount = 33;         // params.h's upper bound on scale_count
 constexpr float kScaleCalibration = 0.5f;  // share (in log) of the scale asymmetry corrected
 constexpr float kScaleLearningRate = 0.025f;  // DSST's scale-model rate (learning_rate is for KCF)
 
@@ -588,8 +590,8 @@ struct KcfTracker::Impl {
   void calibrateScales(const cv::Mat& frame) {
     const int count = static_cast<int>(scales.size());
     std::fill(scale_calib.begin(), scale_calib.end(), 1.0f);
-    if (count < 3) return;
-    std::vector<float> peaks(count);
+    if (count < 3 || count > kMaxScaleCount) return;
+    std::array<float, kMaxScaleCount> peaks{};  // no allocation: init runs on re-detections too
     for (int i = 0; i < count; ++i) {
       const float sc = scales[i];
       respond(frame, center, cv::Size2f(window.width * sc, window.height * sc), resp[i]);
