@@ -22,12 +22,13 @@
 //      stays put in the image) and the background (a static scene object moves exactly with the
 //      background) and vacated its old place (the local contrast there, carried with the
 //      background, has fallen under half of what it was: a peak wandering along a static lattice
-//      or edge leaves the structure behind), or, when auto_init_min_growth > 0, once its object pixels (P >= 0.1 x its
-//      peak around the core) have grown steadily by that much in ln sqrt(pixels) over its
-//      history: an obstacle on a collision course keeps its bearing and only grows. Still
-//      candidates (pixels unchanged for 3 frames) are kept for this cue only;
+//      or edge leaves the structure behind), or, when auto_init_min_growth > 0, once its object
+//      pixels (P >= 0.1 x its peak around the core) have grown steadily by that much in
+//      ln sqrt(pixels) over its history: an obstacle on a collision course keeps its bearing and
+//      only grows. Still candidates (pixels unchanged for 3 frames) are kept for this cue only;
 //   5. score of a confirmed track: mean peak of P x seen share x min(1, motion / (3 x
-//      auto_init_min_motion)) (or growth / (3 x auto_init_min_growth)); with auto_init_horizon_prior, a track below the horizon (the
+//      auto_init_min_motion)) (or growth / (3 x auto_init_min_growth)); with
+//      auto_init_horizon_prior, a track below the horizon (the
 //      strongest row-mean step of the shrunk frame) needs twice the frames and scores x 0.5;
 //   6. the box of a confirmed track is refined by the saliency detector (FastMBD + Otsu) in a
 //      window of 4 x the box (at least 32 px) at native resolution, when its best region
@@ -64,7 +65,7 @@ constexpr double kMinLinearity = 0.5;   // share of position variance a steady m
 constexpr float kSizeShare = 0.1f;      // growth cue: object pixels are P >= this x the peak
 constexpr int kMinGrowthSamples = 12;  // history points before growth can confirm a track
 constexpr double kMinGrowthFit = 0.6;   // share of the log-size variance the growth line explains
-constexpr double kVacated = 0.5;        // motion cue: contrast left at the old place / now
+constexpr double kVacated = 0.5;        // motion cue: contrast at the old place now / then
 constexpr int kLag = 4;                 // frames back for the appearance-change test
 constexpr double kMinChange = 0.5;      // appearance change / local contrast of a moving target  // a candidate's region: pixels >= this share of its peak
 
@@ -401,8 +402,10 @@ struct AutoInitializer::Impl {
         for (const int q : queue) still_region += still.ptr<uchar>(q / cols)[q % cols] >= kStillFrames;
         // Kept, flagged: an obstacle on a collision course keeps its bearing and changes only at
         // its rim, so it looks still too; it can be confirmed by growth, never by motion.
+        // (The growth cue lives in the motion test: with auto_init_min_motion 0 there is no
+        // cue to hold them back, so they are dropped as before.)
         c.still = still_px >= kStillShare * c.box.area() || still_region >= kStillShare * c.area;
-        if (c.still && params.auto_init_min_growth <= 0.0) continue;
+        if (c.still && (params.auto_init_min_growth <= 0.0 || params.auto_init_min_motion <= 0.0)) continue;
       }
       candidates[kept++] = c;
     }
@@ -608,9 +611,9 @@ struct AutoInitializer::Impl {
     return span * std::min(ni, nr) / stt;
   }
 
-  // Growth of a track over its remembered history: the least-squares line through ln sqrt(size_px)
-  // (its object pixels, see findCandidates) against time, times the time span (so 0.2 = the size grew by e^0.2 = 22 %). An obstacle
-  // on a collision course keeps its bearing, so it has no motion across the image or against
+  // Growth of a track over its remembered history: the least-squares line through
+  // ln sqrt(size_px) (its object pixels, see findCandidates) against time, times the time span
+  // (so 0.2 = the size grew by e^0.2 = 22 %). An obstacle on a collision course keeps its bearing, so it has no motion across the image or against
   // the background to confirm it by; its growth is the cue (looming, as in the TTC literature:
   // Lee 1976). `fit` receives the share of the log sizes' variance the line explains (a region
   // whose extent fluctuates grows and shrinks without a trend). Needs kMinGrowthSamples points.

@@ -593,6 +593,7 @@ struct KcfTracker::Impl {
     if (count < 3 || count > kMaxScaleCount) return;
     std::array<float, kMaxScaleCount> peaks{};  // no allocation: init runs on re-detections too
     for (int i = 0; i < count; ++i) {
+      if (2 * i == count - 1) continue;  // the unit scale is not needed
       const float sc = scales[i];
       respond(frame, center, cv::Size2f(window.width * sc, window.height * sc), resp[i]);
       double mx;

@@ -17,8 +17,8 @@
 //                accepted: the filter restarts (init) on its box, so the box takes the object's
 //                current size and shape. After a failed frame, a candidate alone in the window
 //                (high prior, no rival) is accepted at redetect_solo_peak x the peak threshold
-//                (the target's surroundings changed under the model). A frame without an accepted candidate is a failure; more
-//                than max_redetect_failures consecutive failures end the track (reported once
+//                (the target's surroundings changed under the model). A frame without an
+//                accepted candidate is a failure; more than max_redetect_failures consecutive failures end the track (reported once
 //                with state kLost, then removed).
 //   searching    while there is room for a track, AutoInitializer is fed every
 //                detection_interval frames; confirmed candidates that do not overlap a track
