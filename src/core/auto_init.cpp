@@ -32,7 +32,8 @@
 //      strongest row-mean step of the shrunk frame) needs twice the frames and scores x 0.5;
 //   6. the box of a confirmed track is refined by the saliency detector (FastMBD + Otsu) in a
 //      window of 4 x the box (at least 32 px) at native resolution, when its best region
-//      contains the track's centre.
+//      contains the track's centre, then grown to the object's visible extent (ExtentGrower,
+//      extent_contrast: Otsu keeps the bright core of a blurred target of a few pixels).
 // Each cue can be switched off by its parameter; init_table measures what each one brings.
 #include <algorithm>
 #include <array>
@@ -112,6 +113,7 @@ struct AutoInitializer::Impl {
   Params params;
   MbdSaliency mbd;
   SaliencyDetector refiner;
+  ExtentGrower extent;
   MatArena grey_arena, small_arena, half_arena, up_arena, sal_arena, blur_arena, box_arena, contrast_arena,
       prob_arena;
   cv::Mat prev_small, cur_small, ref_small, hann;
@@ -667,6 +669,7 @@ struct AutoInitializer::Impl {
       region.area = r.area;
       break;
     }
+    region.box = extent.grow(frame, region.box, params.extent_contrast);
   }
 
   void confirm(const cv::Mat& frame) {
@@ -755,6 +758,19 @@ const std::vector<SalientRegion>& AutoInitializer::update(const cv::Mat& frame, 
   m.confirm(frame);
   ++m.frame_index;
   return m.confirmed;
+}
+
+double AutoInitializer::stillShare(const cv::Rect2f& box) const {
+  const cv::Mat& still = impl_->still;
+  if (still.empty() || still.size() != impl_->size || !impl_->params.auto_init_reject_static) return 0.0;
+  const cv::Rect r = cv::Rect(box) & cv::Rect(0, 0, still.cols, still.rows);
+  if (r.area() <= 0) return 0.0;
+  int n = 0;
+  for (int y = r.y; y < r.y + r.height; ++y) {
+    const uchar* row = still.ptr<uchar>(y);
+    for (int x = r.x; x < r.x + r.width; ++x) n += row[x] >= kStillFrames;
+  }
+  return static_cast<double>(n) / r.area();
 }
 
 const std::vector<SalientRegion>& AutoInitializer::candidates() const { return impl_->raw; }

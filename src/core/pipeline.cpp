@@ -22,7 +22,12 @@
 //                with state kLost, then removed).
 //   searching    while there is room for a track, AutoInitializer is fed every
 //                detection_interval frames; confirmed candidates that do not overlap a track
-//                become tracks.
+//                become tracks. An auto-started track is verified (verify()): until it has moved
+//                like an obstacle, the AutoInitializer keeps running beside it and a candidate it
+//                confirms elsewhere is tracked unreported as a challenger, which replaces the
+//                track if it passes the same test first (auto_init_verify_frames).
+// Boxes from saliency (auto-initialisation and re-detection) are grown from the region's bright
+// core to the object's visible extent (ExtentGrower, extent_contrast).
 // With max_obstacles > 1: tracks overlapping by more than merge_iou are merged (the older one
 // stays), and in a re-detection a second well-separated salient region that verifies poorly
 // against the model (a split) starts a new track when there is room.
@@ -40,6 +45,7 @@
 #include "obstacle_tracker/core/kcf.h"
 #include "obstacle_tracker/core/looming.h"
 #include "obstacle_tracker/core/saliency.h"
+#include "obstacle_tracker/core/segmentation.h"
 
 namespace obstacle_tracker {
 namespace core {
@@ -57,6 +63,9 @@ constexpr float kWindowGrowthPerFailure = 0.5f;
 constexpr float kMaxWindowGrowth = 3.0f;
 constexpr float kSoloPrior = 0.8f;           // re-detection: a candidate alone in the window ...
 constexpr float kSoloMargin = 0.5f;          // ... (every other prior below this x its own)
+constexpr float kVerifyPanShare = 0.5f;     // verify(): share of the background's displacement added
+constexpr float kVerifyMinImageMotion = 2.0f;  // verify(): px an overlay never moves in the image
+constexpr double kStillShare = 0.5;          // verify(): a box with this share of still pixels is an overlay
 constexpr float kMaxResize = 1.5f;           // a re-detected box side is within 1/1.5..1.5 x the last
 
 float iou(const cv::Rect2f& a, const cv::Rect2f& b) {
@@ -124,6 +133,16 @@ struct Pipeline::Impl {
     int ref_count = 0;
     float learn_gate = -1.0f;  // learn_threshold currently set in the filter
     bool learning = true;      // learning_rate currently set in the filter (else 0)
+    // Verification of an auto-started track (search()): it counts as an obstacle once it has
+    // moved against both the image and the background, or grown; until then it may give way.
+    bool verified = true;
+    int watched = 0;                  // frames the track was checked while unverified
+    cv::Point2f start_centre{0.0f, 0.0f};
+    cv::Point2d start_background{0.0, 0.0};
+    float start_log_size = 0.0f;
+    float max_image_motion = 0.0f;
+    // A challenger (search()): tracked but not reported until it replaces an unverified track.
+    bool probation = false;
   };
 
   struct Candidate {
@@ -148,6 +167,7 @@ struct Pipeline::Impl {
   bool have_pending = false;
   SaliencyDetector saliency;
   AutoInitializer autoinit;
+  ExtentGrower extent;
   std::vector<std::unique_ptr<Track>> tracks;
   std::vector<std::unique_ptr<Track>> pool;  // ended tracks, reused (their filter buffers too)
   std::vector<Obstacle> out;
@@ -252,8 +272,24 @@ struct Pipeline::Impl {
     t->learning = true;
     t->looming.reset();
     t->looming.add(stamp, box);
+    t->verified = true;
+    t->watched = 0;
+    t->probation = false;
     tracks.push_back(std::move(t));
     return *tracks.back();
+  }
+
+  // A track started by auto-initialisation: watched until it moves like an obstacle.
+  Track& newAutoTrack(const cv::Mat& frame, double stamp, const cv::Rect2f& box) {
+    Track& t = newTrack(frame, stamp, box);
+    if (params.auto_init_verify_frames > 0 && params.auto_init_min_motion > 0.0) {
+      t.verified = false;
+      t.start_centre = centre(box);
+      t.start_background = autoinit.backgroundMotion();
+      t.start_log_size = 0.5f * std::log(std::max(1.0f, box.area()));
+      t.max_image_motion = 0.0f;
+    }
+    return t;
   }
 
   void acceptGood(Track& t, const cv::Rect2f& box, double stamp, bool restarted) {
@@ -376,8 +412,8 @@ struct Pipeline::Impl {
     if (best < 0) return false;
     const Candidate& c = candidates[static_cast<std::size_t>(best)];
     // The salient region's own box, so the box takes the object's current size and shape (the
-    // paper's re-initialisation).
-    cv::Rect2f box = c.box;
+    // paper's re-initialisation), grown from the region's bright core to the object's extent.
+    cv::Rect2f box = extent.grow(frame, c.box, params.extent_contrast);
     {
       // The region's size and shape, within a band around the last good box: Otsu regions of a
       // few-pixel target are often only its hot core, and one bad segmentation must not
@@ -492,7 +528,7 @@ struct Pipeline::Impl {
 
   int activeTracks() const {
     int n = 0;
-    for (const auto& t : tracks) n += t->state != TrackState::kLost ? 1 : 0;
+    for (const auto& t : tracks) n += t->state != TrackState::kLost && !t->probation ? 1 : 0;
     return n;
   }
 
@@ -504,8 +540,9 @@ struct Pipeline::Impl {
         if (a.state != TrackState::kLost && b.state != TrackState::kLost &&
             iou(a.box, b.box) > params.merge_iou) {
           // Keep the one in the better state, then the older one.
-          const bool keep_a = stateRank(a.state) != stateRank(b.state) ? stateRank(a.state) < stateRank(b.state)
-                                                                       : a.age >= b.age;
+          const bool keep_a = a.probation != b.probation          ? b.probation
+                              : stateRank(a.state) != stateRank(b.state) ? stateRank(a.state) < stateRank(b.state)
+                                                                         : a.age >= b.age;
           const std::size_t drop = keep_a ? j : i;
           pool.push_back(std::move(tracks[drop]));
           tracks.erase(tracks.begin() + static_cast<long>(drop));
@@ -520,8 +557,113 @@ struct Pipeline::Impl {
     }
   }
 
+  // Auto-initialisation confirms a candidate from a few frames of evidence, and sometimes
+  // confirms a scene object (a building in a panning view, a changing digit of the camera's
+  // on-screen display); with one track allowed, such a track would hold the slot for good. So an
+  // auto-started track is verified over a longer time with a motion test like the
+  // confirmation's: it is an obstacle once its box has moved from where it started against the
+  // background (AutoInitializer::backgroundMotion) by 2 x auto_init_min_motion plus half the
+  // background's own displacement, and either as far in the image or (a target the camera keeps
+  // in view) a little, with pixels that change; or once it has grown by auto_init_min_growth in
+  // ln sqrt(area).
+  // While a track is unverified the AutoInitializer keeps running, and a candidate it confirms
+  // elsewhere becomes a challenger: tracked and verified the same way, but not reported. A
+  // challenger that passes replaces a track still unverified after auto_init_verify_frames
+  // (settleChallenge). A verified track is never replaced (a hovering obstacle stays tracked),
+  // and an obstacle on a collision course, which neither moves nor grows much at first, is not
+  // given up for a candidate that has not proved more.
+  void verify(Track& t) {
+    if (t.verified || t.state == TrackState::kLost) return;
+    if (params.auto_init_verify_frames <= 0 || params.auto_init_min_motion <= 0.0) {
+      t.verified = true;  // switched off since the track started
+      return;
+    }
+    ++t.watched;
+    const cv::Point2d bg_d = autoinit.backgroundMotion() - t.start_background;
+    const cv::Point2f bg(static_cast<float>(bg_d.x), static_cast<float>(bg_d.y));
+    const cv::Point2f in_image = centre(t.box) - t.start_centre;
+    const float image_motion = std::hypot(in_image.x, in_image.y);
+    const float bg_motion = std::hypot(bg.x, bg.y);
+    const float own_motion = std::hypot(in_image.x - bg.x, in_image.y - bg.y);
+    t.max_image_motion = std::max(t.max_image_motion, image_motion);
+    // Twice the confirmation's distance, whatever the size (the filter's box does not fluctuate
+    // with the segmentation as a candidate's region does), plus a share of the background's own
+    // displacement: the global estimate lags a fast pan (by about half on antiuav_ir_04's pan over
+    // sky and a tree line) and a near object moves unlike the distant background (parallax), so
+    // a scene object seems to move against the background in proportion to the pan.
+    const float need = 2.0f * static_cast<float>(params.auto_init_min_motion) + kVerifyPanShare * bg_motion;
+    // Moved against the background, and in the image too, or (a target the camera keeps in view)
+    // at least a little in the image with pixels that change: an overlay is pixel-locked.
+    const bool moved = own_motion >= need &&
+                       (image_motion >= need || (t.max_image_motion >= kVerifyMinImageMotion &&
+                                                 autoinit.stillShare(t.box) < kStillShare));
+    const float growth = 0.5f * std::log(std::max(1.0f, t.box.area())) - t.start_log_size;
+    const bool grew = params.auto_init_min_growth > 0.0 && growth >= static_cast<float>(params.auto_init_min_growth);
+    if (moved || grew) t.verified = true;
+  }
+
+  // The unverified track (not a challenger) watched longest past auto_init_verify_frames, or none.
+  Track* replaceableTrack() {
+    Track* best = nullptr;
+    for (auto& t : tracks) {
+      if (t->verified || t->probation || t->state == TrackState::kLost ||
+          t->watched < params.auto_init_verify_frames) {
+        continue;
+      }
+      if (best == nullptr || t->watched > best->watched) best = t.get();
+    }
+    return best;
+  }
+
+  bool anyUnverified() const {
+    for (const auto& t : tracks) {
+      if (!t->verified && !t->probation && t->state != TrackState::kLost) return true;
+    }
+    return false;
+  }
+
+  Track* challenger() {
+    for (auto& t : tracks) {
+      if (t->probation) return t.get();
+    }
+    return nullptr;
+  }
+
+  void removeTrack(const Track* victim) {
+    for (auto& t : tracks) {
+      if (t.get() != victim) continue;
+      std::swap(t, tracks.back());
+      pool.push_back(std::move(tracks.back()));
+      tracks.pop_back();
+      return;
+    }
+  }
+
+  // A challenger that proved itself a mover takes the place of the unverified track; one that
+  // did not within twice the verification time, or was lost, is dropped.
+  void settleChallenge() {
+    Track* c = challenger();
+    if (c == nullptr) return;
+    if (c->state == TrackState::kLost || (!c->verified && c->watched > 2 * params.auto_init_verify_frames)) {
+      removeTrack(c);
+      return;
+    }
+    if (activeTracks() < params.max_obstacles) {
+      c->probation = false;  // the slot became free
+      return;
+    }
+    if (!c->verified) return;
+    if (Track* stale = replaceableTrack()) {
+      removeTrack(stale);
+      c = challenger();
+      c->probation = false;
+    }
+  }
+
   void search(const cv::Mat& frame, double stamp) {
-    if (activeTracks() >= params.max_obstacles) {
+    const bool full = activeTracks() >= params.max_obstacles;
+    if (full && !anyUnverified()) {
+      if (Track* c = challenger()) removeTrack(c);
       if (!autoinit_fresh) {
         autoinit.reset();
         autoinit_fresh = true;
@@ -531,10 +673,15 @@ struct Pipeline::Impl {
     if ((frame_index - 1) % params.detection_interval != 0) return;
     autoinit_fresh = false;
     const std::vector<SalientRegion>& found = autoinit.update(frame, stamp);
+    for (auto& t : tracks) verify(*t);
+    settleChallenge();
     for (const auto& r : found) {
-      if (activeTracks() >= params.max_obstacles) break;
       if (!usableBox(r.box, frame_size) || overlapsTrack(r.box, kSpawnMaxIou)) continue;
-      newTrack(frame, stamp, r.box);
+      if (activeTracks() < params.max_obstacles) {
+        newAutoTrack(frame, stamp, r.box);
+      } else if (anyUnverified() && challenger() == nullptr) {
+        newAutoTrack(frame, stamp, r.box).probation = true;
+      }
     }
   }
 
@@ -560,6 +707,7 @@ struct Pipeline::Impl {
     }
     out.clear();
     for (const auto& t : tracks) {
+      if (t->probation) continue;
       Obstacle o;
       o.id = t->id;
       o.box = t->box;

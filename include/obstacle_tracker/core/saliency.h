@@ -75,6 +75,9 @@ class AutoInitializer {
   // (where the scene content of the first frame has moved to), for tools and tests.
   const std::vector<SalientRegion>& candidates() const;
   cv::Point2d backgroundMotion() const;
+  // Share of the box's pixels unchanged (within 3 grey levels) for the last 3 frames: an
+  // overlay, or a scene under a still camera. 0 when unknown (auto_init_reject_static off).
+  double stillShare(const cv::Rect2f& box) const;
 
  private:
   struct Impl;

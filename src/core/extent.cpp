@@ -1,0 +1,151 @@
+// Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
+//
+// ExtentGrower (segmentation.h): from the bright core that Otsu leaves of a small or blurred
+// object to the object's visible extent, by region growing from the core on the contrast against
+// the local background (robust statistics of the window's outer ring: median background level,
+// MAD noise). The level is relative to the core's own contrast, as the edge of a blurred blob is
+// where its profile has fallen to a small share of its height.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+
+#include "obstacle_tracker/core/segmentation.h"
+
+namespace obstacle_tracker {
+namespace core {
+
+namespace {
+
+constexpr float kMinMargin = 6.0f;   // px of window around the core at least
+constexpr int kRing = 2;             // px: the window's outer ring gives background and noise
+constexpr double kNoiseSigmas = 3.0; // object pixels stand this many noise sigmas out
+constexpr int kMinLevel = 2;         // grey levels: the object's contrast is at least this
+constexpr float kMaxGrowth = 4.0f;   // the grown box covers at most this x the core's area
+constexpr double kMadToSigma = 1.4826;
+constexpr double kCorePercentile = 0.9;
+
+using Histogram = std::array<int, 256>;
+
+// Smallest level v with more than `share` of the histogram's count at or below it.
+int quantile(const Histogram& h, int count, double share) {
+  const double target = share * count;
+  int acc = 0;
+  for (int v = 0; v < 256; ++v) {
+    acc += h[static_cast<std::size_t>(v)];
+    if (acc > target) return v;
+  }
+  return 255;
+}
+
+bool inRing(int x, int y, int w, int h) { return x < kRing || y < kRing || x >= w - kRing || y >= h - kRing; }
+
+}  // namespace
+
+cv::Rect2f ExtentGrower::grow(const cv::Mat& frame, const cv::Rect2f& core, double share) {
+  if (!(share > 0.0) || frame.empty() || (frame.type() != CV_8UC1 && frame.type() != CV_8UC3)) return core;
+  if (!std::isfinite(core.x) || !std::isfinite(core.y) || !std::isfinite(core.width) ||
+      !std::isfinite(core.height) || core.width < 1.0f || core.height < 1.0f) {
+    return core;
+  }
+  // Window and core in pixels, clipped to the frame (in float first: a box far outside must not
+  // overflow an int).
+  const float fw = static_cast<float>(frame.cols), fh = static_cast<float>(frame.rows);
+  auto clampX = [&](float v) { return static_cast<int>(std::min(std::max(v, 0.0f), fw)); };
+  auto clampY = [&](float v) { return static_cast<int>(std::min(std::max(v, 0.0f), fh)); };
+  const float margin = std::max(kMinMargin, std::max(core.width, core.height));
+  const int wx0 = clampX(std::floor(core.x - margin)), wy0 = clampY(std::floor(core.y - margin));
+  const int wx1 = clampX(std::ceil(core.x + core.width + margin)), wy1 = clampY(std::ceil(core.y + core.height + margin));
+  const int w = wx1 - wx0, h = wy1 - wy0;
+  if (w < 2 * kRing + 3 || h < 2 * kRing + 3) return core;
+  const int cx0 = std::max(kRing, clampX(std::floor(core.x)) - wx0);
+  const int cy0 = std::max(kRing, clampY(std::floor(core.y)) - wy0);
+  const int cx1 = std::min(w - kRing, clampX(std::ceil(core.x + core.width)) - wx0);
+  const int cy1 = std::min(h - kRing, clampY(std::ceil(core.y + core.height)) - wy0);
+  if (cx1 <= cx0 || cy1 <= cy0) return core;
+
+  const cv::Mat win = frame(cv::Rect(wx0, wy0, w, h));
+  const int channels = frame.channels();
+
+  // Background level per channel: median of the ring.
+  std::array<int, 3> bg{0, 0, 0};
+  int ring_count = 0;
+  {
+    std::array<Histogram, 3> hist{};
+    for (int y = 0; y < h; ++y) {
+      const uchar* row = win.ptr<uchar>(y);
+      for (int x = 0; x < w; ++x) {
+        if (!inRing(x, y, w, h)) {
+          x = w - kRing - 1;  // jump over the inside of the row
+          continue;
+        }
+        for (int ch = 0; ch < channels; ++ch) ++hist[static_cast<std::size_t>(ch)][row[x * channels + ch]];
+        ++ring_count;
+      }
+    }
+    for (int ch = 0; ch < channels; ++ch) bg[static_cast<std::size_t>(ch)] = quantile(hist[static_cast<std::size_t>(ch)], ring_count, 0.5);
+  }
+
+  // Contrast image, its noise on the ring and its level in the core.
+  cv::Mat c = contrast_arena_.get(h, w, CV_8U);
+  Histogram ring_hist{}, core_hist{};
+  for (int y = 0; y < h; ++y) {
+    const uchar* row = win.ptr<uchar>(y);
+    uchar* out = c.ptr<uchar>(y);
+    for (int x = 0; x < w; ++x) {
+      int v = 0;
+      for (int ch = 0; ch < channels; ++ch) {
+        v = std::max(v, std::abs(static_cast<int>(row[x * channels + ch]) - bg[static_cast<std::size_t>(ch)]));
+      }
+      out[x] = static_cast<uchar>(v);
+      if (inRing(x, y, w, h)) ++ring_hist[static_cast<std::size_t>(v)];
+      else if (x >= cx0 && x < cx1 && y >= cy0 && y < cy1) ++core_hist[static_cast<std::size_t>(v)];
+    }
+  }
+  const double noise = kMadToSigma * quantile(ring_hist, ring_count, 0.5);
+  const int peak = quantile(core_hist, (cx1 - cx0) * (cy1 - cy0), kCorePercentile);
+  const double level = std::max({share * peak, kNoiseSigmas * noise, static_cast<double>(kMinLevel)});
+  if (peak <= level) return core;  // the core does not stand out of the background
+  const int threshold = static_cast<int>(std::floor(level));  // object: c > threshold
+
+  // Region growing from the core's object pixels; visited pixels are set to 0.
+  queue_.clear();
+  for (int y = cy0; y < cy1; ++y) {
+    uchar* row = c.ptr<uchar>(y);
+    for (int x = cx0; x < cx1; ++x) {
+      if (row[x] > threshold) {
+        row[x] = 0;
+        queue_.push_back(y * w + x);
+      }
+    }
+  }
+  if (queue_.empty()) return core;
+  int minx = w, miny = h, maxx = -1, maxy = -1;
+  for (std::size_t i = 0; i < queue_.size(); ++i) {
+    const int x = queue_[i] % w, y = queue_[i] / w;
+    minx = std::min(minx, x);
+    maxx = std::max(maxx, x);
+    miny = std::min(miny, y);
+    maxy = std::max(maxy, y);
+    if (x == 0 || y == 0 || x == w - 1 || y == h - 1) return core;  // joined to the surroundings
+    for (int dy = -1; dy <= 1; ++dy) {
+      uchar* row = c.ptr<uchar>(y + dy);
+      for (int dx = -1; dx <= 1; ++dx) {
+        if (row[x + dx] > threshold) {
+          row[x + dx] = 0;
+          queue_.push_back((y + dy) * w + x + dx);
+        }
+      }
+    }
+  }
+  const float ox0 = std::min(core.x, static_cast<float>(wx0 + minx));
+  const float oy0 = std::min(core.y, static_cast<float>(wy0 + miny));
+  const float ox1 = std::max(core.x + core.width, static_cast<float>(wx0 + maxx + 1));
+  const float oy1 = std::max(core.y + core.height, static_cast<float>(wy0 + maxy + 1));
+  const cv::Rect2f grown(ox0, oy0, ox1 - ox0, oy1 - oy0);
+  if (grown.area() > kMaxGrowth * core.area()) return core;
+  return grown;
+}
+
+}  // namespace core
+}  // namespace obstacle_tracker
