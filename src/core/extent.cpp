@@ -108,7 +108,9 @@ cv::Rect2f ExtentGrower::grow(const cv::Mat& frame, const cv::Rect2f& core, doub
   if (peak <= level) return core;  // the core does not stand out of the background
   const int threshold = static_cast<int>(std::floor(level));  // object: c > threshold
 
-  // Region growing from the core's object pixels; visited pixels are set to 0.
+  // Region growing from the core's object pixels; visited pixels are set to 0. The queue holds
+  // each window pixel at most once.
+  if (queue_.capacity() < static_cast<std::size_t>(w) * h) queue_.reserve(static_cast<std::size_t>(w) * h);
   queue_.clear();
   for (int y = cy0; y < cy1; ++y) {
     uchar* row = c.ptr<uchar>(y);

@@ -209,12 +209,16 @@ struct Pipeline::Impl {
     autoinit.setParams(params);
     for (auto& t : tracks) {
       t->kcf.setParams(params);
+      t->learn_gate = -1.0f;  // the filter has the plain params now: configureFilter sets its gate again
       if (params.looming_window != old_window) t->looming.setWindow(params.looming_window);
     }
     for (auto& t : pool) t->kcf.setParams(params);
-    while (static_cast<int>(tracks.size()) > params.max_obstacles) {
-      pool.push_back(std::move(tracks.back()));
-      tracks.pop_back();
+    // The surplus of a smaller max_obstacles goes from the back; a challenger is not one of the
+    // max_obstacles tracks and stays.
+    for (std::size_t i = tracks.size(); i-- > 0 && static_cast<int>(tracks.size()) - (challenger() ? 1 : 0) > params.max_obstacles;) {
+      if (tracks[i]->probation) continue;
+      pool.push_back(std::move(tracks[i]));
+      tracks.erase(tracks.begin() + static_cast<long>(i));
     }
   }
 
@@ -569,9 +573,12 @@ struct Pipeline::Impl {
   // While a track is unverified the AutoInitializer keeps running, and a candidate it confirms
   // elsewhere becomes a challenger: tracked and verified the same way, but not reported. A
   // challenger that passes replaces a track still unverified after auto_init_verify_frames
-  // (settleChallenge). A verified track is never replaced (a hovering obstacle stays tracked),
-  // and an obstacle on a collision course, which neither moves nor grows much at first, is not
-  // given up for a candidate that has not proved more.
+  // (settleChallenge). A verified track is never replaced; an unverified one is replaced only by
+  // a challenger that has proved itself a mover, so an obstacle on a collision course, which
+  // neither moves nor grows much at first, is not given up for a candidate that has not proved
+  // more (an auto-started obstacle that hovers in a still view never verifies and would give way
+  // to a mover). While a track is unverified the AutoInitializer costs what it costs while
+  // searching (and allocates as it does: cv::phaseCorrelate's buffers).
   void verify(Track& t) {
     if (t.verified || t.state == TrackState::kLost) return;
     if (params.auto_init_verify_frames <= 0 || params.auto_init_min_motion <= 0.0) {

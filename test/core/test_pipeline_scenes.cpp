@@ -146,6 +146,43 @@ TEST(PipelineScenes, UnverifiedStartGivesWayToAMover) {
   }
   EXPECT_GE(first_id, 0);
   EXPECT_NE(first_id, last_id);
+  // ... and the track that replaced it is on the multirotor (not the mast found again).
+  int reported = 0, on_target = 0;
+  for (std::size_t i = 0; i < with.frames.size(); ++i) {
+    if (with.frames[i].empty() || with.frames[i].front().id != last_id) continue;
+    const scene::ObstacleTruth* m = with.truth[i].find(1);
+    if (m == nullptr || !m->visible) continue;
+    ++reported;
+    const cv::Rect2f& b = with.frames[i].front().box;
+    on_target += std::hypot(b.x + 0.5f * b.width - m->box.x - 0.5f * m->box.width,
+                            b.y + 0.5f * b.height - m->box.y - 0.5f * m->box.height) <= 20.0f;
+  }
+  std::printf("[ scene    ] the replacing track: on the multirotor on %d of %d frames\n", on_target, reported);
+  EXPECT_GT(reported, 0);
+  EXPECT_GE(on_target, static_cast<int>(0.8 * reported));
+}
+
+// setParams with the same values changes nothing, also while a challenger is tracked unreported
+// beside an unverified track (the challenger is not one of the max_obstacles tracks and must not
+// push the reported track out).
+TEST(PipelineScenes, SameParamsWhileVerifyingChangeNothing) {
+  scene::SceneGenerator gen = scene::makeScenario("tiny+overlay+jitter", 3, 180, cv::Size(640, 480));
+  core::Pipeline plain, touched;
+  cv::Mat frame;
+  int differing = 0, reported = 0;
+  for (int i = 0; i < gen.frameCount(); ++i) {
+    gen.renderFrame(i, frame, nullptr);
+    const double stamp = i / gen.fps();
+    touched.setParams(touched.params());
+    const std::vector<core::Obstacle> a = plain.process(frame, stamp);
+    const std::vector<core::Obstacle>& b = touched.process(frame, stamp);
+    reported += a.empty() ? 0 : 1;
+    bool same = a.size() == b.size();
+    for (std::size_t k = 0; same && k < a.size(); ++k) same = a[k].id == b[k].id && a[k].box == b[k].box;
+    differing += same ? 0 : 1;
+  }
+  EXPECT_GT(reported, 0);
+  EXPECT_EQ(differing, 0);
 }
 
 // A track that passes the verification is never replaced: the generated crossing aircraft, once

@@ -77,8 +77,8 @@ namespace core {
     "drop auto-init candidates in rows of similar components (on-screen text)")                   \
   X(bool, auto_init_reject_static, true, false, true, "",                                          \
     "drop auto-init candidates whose pixels have not changed for 3 frames (overlays)")            \
-  X(int, auto_init_verify_frames, 20, 0, 10000, "frames",                                          \
-    "checks after which an auto-started track that has not moved like an obstacle yields to a candidate that has (0 = off)") \
+  X(int, auto_init_verify_frames, 20, 0, 10000, "checks",                                          \
+    "checks (one per detection_interval frames) after which an auto-started track not yet moving like an obstacle yields to one that does (0 = off)") \
   X(bool, auto_init_shape_filter, false, false, true, "",                                          \
     "drop auto-init tracks whose box is a thin line (aspect > 4.5: reticles, poles, markings)")   \
   X(double, extent_contrast, 0.1, 0.0, 1.0, "",                                                    \

@@ -76,7 +76,7 @@ class RegionExtractor {
 //   background = per-channel median of the window's outer 2-pixel ring;
 //   contrast c = max over channels of |pixel - background|; noise = 1.4826 x median(c) on the ring;
 //   object = the 8-connected pixels with c > max(contrast x the 90th percentile of c in the core,
-//            3 x noise) that are connected to a core pixel above that level.
+//            3 x noise, 2 grey levels) that are connected to a core pixel above that level.
 // The result is the union of the core box and the object's box. The core box comes back
 // unchanged when the object reaches the window's edge (it is joined to background structure or
 // leaves the frame), when the result would cover more than 4x the core's area, or when the core
