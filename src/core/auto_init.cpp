@@ -219,6 +219,16 @@ struct AutoInitializer::Impl {
     grey.copyTo(prev_grey);
   }
 
+  // Pixels of r (inside the frame) unchanged for kStillFrames frames.
+  int stillPixels(const cv::Rect& r) const {
+    int n = 0;
+    for (int y = r.y; y < r.y + r.height; ++y) {
+      const uchar* sc = still.ptr<uchar>(y);
+      for (int x = r.x; x < r.x + r.width; ++x) n += sc[x] >= kStillFrames;
+    }
+    return n;
+  }
+
   // Candidate map P (CV_8U, native resolution).
   cv::Mat candidateMap(const cv::Mat& grey) {
     const int rows = grey.rows, cols = grey.cols;
@@ -396,11 +406,8 @@ struct AutoInitializer::Impl {
         // frames: an overlay (or a static scene under a still camera). A moving target changes
         // most of its box and of its pixels every frame; an overlay line crossing a textured
         // background keeps its own pixels but not its box.
-        int still_px = 0, still_region = 0;
-        for (int y = c.box.y; y < c.box.y + c.box.height; ++y) {
-          const uchar* sc = still.ptr<uchar>(y);
-          for (int x = c.box.x; x < c.box.x + c.box.width; ++x) still_px += sc[x] >= kStillFrames;
-        }
+        const int still_px = stillPixels(c.box);
+        int still_region = 0;
         for (const int q : queue) still_region += still.ptr<uchar>(q / cols)[q % cols] >= kStillFrames;
         // Kept, flagged: an obstacle on a collision course keeps its bearing and changes only at
         // its rim, so it looks still too; it can be confirmed by growth, never by motion.
@@ -765,12 +772,7 @@ double AutoInitializer::stillShare(const cv::Rect2f& box) const {
   if (still.empty() || still.size() != impl_->size || !impl_->params.auto_init_reject_static) return 0.0;
   const cv::Rect r = cv::Rect(box) & cv::Rect(0, 0, still.cols, still.rows);
   if (r.area() <= 0) return 0.0;
-  int n = 0;
-  for (int y = r.y; y < r.y + r.height; ++y) {
-    const uchar* row = still.ptr<uchar>(y);
-    for (int x = r.x; x < r.x + r.width; ++x) n += row[x] >= kStillFrames;
-  }
-  return static_cast<double>(n) / r.area();
+  return static_cast<double>(impl_->stillPixels(r)) / r.area();
 }
 
 const std::vector<SalientRegion>& AutoInitializer::candidates() const { return impl_->raw; }

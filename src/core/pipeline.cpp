@@ -133,10 +133,10 @@ struct Pipeline::Impl {
     int ref_count = 0;
     float learn_gate = -1.0f;  // learn_threshold currently set in the filter
     bool learning = true;      // learning_rate currently set in the filter (else 0)
-    // Verification of an auto-started track (search()): it counts as an obstacle once it has
-    // moved against both the image and the background, or grown; until then it may give way.
+    // Verification of an auto-started track (verify()): it counts as an obstacle once it has
+    // moved like one, or grown; until then it may give way to a challenger.
     bool verified = true;
-    int watched = 0;                  // frames the track was checked while unverified
+    int watched = 0;                  // checks while unverified (one per auto-init frame)
     cv::Point2f start_centre{0.0f, 0.0f};
     cv::Point2d start_background{0.0, 0.0};
     float start_log_size = 0.0f;
@@ -215,10 +215,13 @@ struct Pipeline::Impl {
     for (auto& t : pool) t->kcf.setParams(params);
     // The surplus of a smaller max_obstacles goes from the back; a challenger is not one of the
     // max_obstacles tracks and stays.
-    for (std::size_t i = tracks.size(); i-- > 0 && static_cast<int>(tracks.size()) - (challenger() ? 1 : 0) > params.max_obstacles;) {
+    int kept = 0;
+    for (const auto& t : tracks) kept += t->probation ? 0 : 1;
+    for (std::size_t i = tracks.size(); i-- > 0 && kept > params.max_obstacles;) {
       if (tracks[i]->probation) continue;
       pool.push_back(std::move(tracks[i]));
       tracks.erase(tracks.begin() + static_cast<long>(i));
+      --kept;
     }
   }
 
