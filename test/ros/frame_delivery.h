@@ -1,0 +1,73 @@
+// Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
+//
+// What the nodelet promises about which frames it answers, checked from the sending side without
+// any bar on the machine's speed (used by the accuracy and load rostests):
+//   - every answer carries the stamp of a frame that was sent, and no frame is answered twice;
+//   - frames are answered in the order they were sent;
+//   - a frame is left unanswered only while the tracker was busy with an earlier frame. The
+//     subscription queue holds one image: a frame is replaced only when it arrived while an earlier
+//     frame was being processed, so that earlier frame's answer was published after this frame
+//     was sent. Sent-before-received and published-before-received make the test causal: with
+//     s_i the time frame i was published and o_j the time the answer to j reached the test (one
+//     clock, one process), a dropped frame i needs an answered j < i with o_j > s_i;
+//   - the newest frame is never dropped: the last frame sent (nothing came after it to replace
+//     it) is answered.
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace obstacle_tracker {
+namespace ros_test {
+
+struct FrameRecord {
+  double sent = NAN;     // when the test published the frame (steady clock, s); NaN: not sent
+  double answered = NAN; // when its ObstacleArray reached the test (first one); NaN: no answer
+  int answers = 0;       // ObstacleArrays received with this frame's stamp
+};
+
+struct DeliveryReport {
+  int sent = 0;
+  int answered = 0;
+  int doubled = 0;              // frames answered more than once
+  int dropped = 0;              // sent frames with no answer
+  int dropped_while_idle = 0;   // of those, frames no earlier answer was pending for
+  int out_of_order = 0;         // answers that arrived before the answer of an earlier frame
+  bool last_answered = false;   // the last frame sent has an answer
+  std::string idle_drops;       // indices of the first dropped-while-idle frames
+
+  // The promise, as one boolean (the fields above say which part failed).
+  bool kept() const {
+    return doubled == 0 && dropped_while_idle == 0 && out_of_order == 0 && last_answered;
+  }
+};
+
+inline DeliveryReport checkDelivery(const std::vector<FrameRecord>& frames) {
+  DeliveryReport r;
+  double latest_answer = -INFINITY;  // max o_j over the answered frames before the current one
+  int last_sent = -1;
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    const FrameRecord& f = frames[i];
+    if (std::isnan(f.sent)) continue;
+    ++r.sent;
+    last_sent = static_cast<int>(i);
+    if (f.answers > 1) ++r.doubled;
+    if (f.answers > 0) {
+      ++r.answered;
+      if (f.answered < latest_answer) ++r.out_of_order;
+      if (f.answered > latest_answer) latest_answer = f.answered;
+      continue;
+    }
+    ++r.dropped;
+    if (!(latest_answer > f.sent)) {
+      if (++r.dropped_while_idle <= 20) r.idle_drops += " " + std::to_string(i);
+    }
+  }
+  r.last_answered = last_sent >= 0 && frames[static_cast<std::size_t>(last_sent)].answers > 0;
+  return r;
+}
+
+}  // namespace ros_test
+}  // namespace obstacle_tracker
