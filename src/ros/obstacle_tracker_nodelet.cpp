@@ -58,12 +58,14 @@ void describedSize(const sensor_msgs::CameraInfo& info, std::uint32_t* width, st
 ObstacleTrackerNodelet::ObstacleTrackerNodelet() = default;
 
 ObstacleTrackerNodelet::~ObstacleTrackerNodelet() {
-  // Stop the inputs before the members they use go away.
+  // Stop the inputs, then the processing thread, before the members they use go away.
   diagnostics_timer_.stop();
   image_sub_.shutdown();
   sync_.reset();
   info_filter_.reset();
   image_filter_.reset();
+  slot_.stop();
+  if (worker_.joinable()) worker_.join();
 }
 
 void ObstacleTrackerNodelet::loadParams() {
@@ -134,12 +136,16 @@ void ObstacleTrackerNodelet::onInit() {
   window_start_ = ros::WallTime::now();
   diagnostics_timer_ = pnh.createWallTimer(ros::WallDuration(0.25), &ObstacleTrackerNodelet::diagnosticsTimer, this);
 
+  worker_ = std::thread(&ObstacleTrackerNodelet::processFrames, this);
   it_.reset(new image_transport::ImageTransport(nh));
   const image_transport::TransportHints hints("raw", ros::TransportHints(), pnh);
+  // The callbacks only hand frames to the slot, so these queues hardly ever hold more than one;
+  // room for a burst, so that the slot (not roscpp) decides what is dropped.
+  const std::uint32_t queue = 4;
   if (use_camera_info_) {
-    image_filter_.reset(new image_transport::SubscriberFilter(*it_, "image", 1, hints));
+    image_filter_.reset(new image_transport::SubscriberFilter(*it_, "image", queue, hints));
     image_filter_->registerCallback(boost::bind(&ObstacleTrackerNodelet::countInput, this, boost::placeholders::_1));
-    info_filter_.reset(new message_filters::Subscriber<sensor_msgs::CameraInfo>(nh, "camera_info", 1));
+    info_filter_.reset(new message_filters::Subscriber<sensor_msgs::CameraInfo>(nh, "camera_info", queue));
     sync_.reset(new message_filters::Synchronizer<SyncPolicy>(SyncPolicy(4), *image_filter_, *info_filter_));
     sync_->registerCallback(boost::bind(&ObstacleTrackerNodelet::imageInfoCallback, this,
                                         boost::placeholders::_1, boost::placeholders::_2));
@@ -147,7 +153,7 @@ void ObstacleTrackerNodelet::onInit() {
                  nh.resolveName("image").c_str(), hints.getTransport().c_str(),
                  nh.resolveName("camera_info").c_str(), obstacles_pub_.getTopic().c_str());
   } else {
-    image_sub_ = it_->subscribe("image", 1, &ObstacleTrackerNodelet::imageCallback, this, hints);
+    image_sub_ = it_->subscribe("image", queue, &ObstacleTrackerNodelet::imageCallback, this, hints);
     NODELET_INFO("tracking %s (transport '%s'), no camera_info (no bearings); publishing %s",
                  nh.resolveName("image").c_str(), hints.getTransport().c_str(),
                  obstacles_pub_.getTopic().c_str());
@@ -160,8 +166,8 @@ void ObstacleTrackerNodelet::countInput(const sensor_msgs::ImageConstPtr& image)
     ++window_.received;
     ++total_.received;
     const std::uint32_t seq = image->header.seq;
-    // A gap in the sequence numbers: frames the subscription queue (size 1) replaced while the
-    // tracker was busy, or lost in transport. Sequences that restart (bag loop) are not gaps.
+    // A gap in the sequence numbers: frames lost before the callback (transport, a full
+    // subscription queue). Sequences that restart (bag loop) are not gaps.
     if (have_input_seq_ && seq > last_input_seq_ + 1 && seq - last_input_seq_ < 1000000) {
       window_.dropped += seq - last_input_seq_ - 1;
       total_.dropped += seq - last_input_seq_ - 1;
@@ -180,7 +186,7 @@ void ObstacleTrackerNodelet::countInput(const sensor_msgs::ImageConstPtr& image)
 void ObstacleTrackerNodelet::imageCallback(const sensor_msgs::ImageConstPtr& image) {
   try {
     countInput(image);
-    process(image, sensor_msgs::CameraInfoConstPtr());
+    slot_.offer({image, sensor_msgs::CameraInfoConstPtr()});
   } catch (const std::exception& e) {  // process() catches its own; this guards the locking
     NODELET_ERROR_THROTTLE(5.0, "image callback: %s", e.what());
   } catch (...) {
@@ -195,7 +201,7 @@ void ObstacleTrackerNodelet::imageInfoCallback(const sensor_msgs::ImageConstPtr&
       std::lock_guard<std::mutex> lock(stats_mutex_);
       unsynced_since_pair_ = 0;
     }
-    process(image, info);
+    slot_.offer({image, info});
   } catch (const std::exception& e) {
     NODELET_ERROR_THROTTLE(5.0, "image + camera_info callback: %s", e.what());
   } catch (...) {
@@ -203,11 +209,26 @@ void ObstacleTrackerNodelet::imageInfoCallback(const sensor_msgs::ImageConstPtr&
   }
 }
 
+void ObstacleTrackerNodelet::processFrames() {
+  PendingFrame frame;
+  while (slot_.take(&frame)) {
+    try {
+      process(frame.image, frame.info);
+    } catch (...) {  // process() reports its own errors; nothing may end this thread
+      NODELET_ERROR_THROTTLE(5.0, "frame processing: unknown error");
+    }
+    frame = PendingFrame();  // the image's memory goes back while we wait
+    slot_.done();
+    const std::uint64_t dropped = slot_.dropped();
+    std::lock_guard<std::mutex> lock(stats_mutex_);
+    window_.dropped += dropped - slot_drops_counted_;
+    total_.dropped += dropped - slot_drops_counted_;
+    slot_drops_counted_ = dropped;
+  }
+}
+
 void ObstacleTrackerNodelet::process(const sensor_msgs::ImageConstPtr& image,
                                      const sensor_msgs::CameraInfoConstPtr& info) {
-  // In the standalone node (multi-threaded spinner) the synchroniser may call this from the
-  // image and from the camera_info thread: one frame at a time.
-  std::lock_guard<std::mutex> frame_lock(frame_mutex_);
   const std::string& encoding = image->encoding;
   std::string error;
   try {
@@ -401,7 +422,7 @@ void ObstacleTrackerNodelet::diagnose(diagnostic_updater::DiagnosticStatusWrappe
   status.add("processing time max (ms)", 1e3 * w.processing_max);
   status.add("latency from image stamp mean (ms)", 1e3 * w.latency_sum / n);
   status.add("latency from image stamp max (ms)", 1e3 * w.latency_max);
-  status.add("dropped frames (sequence gaps, this period)", w.dropped);
+  status.add("dropped frames (this period)", w.dropped);
   status.add("refused frames (this period)", w.rejected);
   status.add("images received (total)", total_.received);
   status.add("frames processed (total)", total_.processed);

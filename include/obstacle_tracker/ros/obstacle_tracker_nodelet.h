@@ -1,8 +1,11 @@
 // Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
 //
 // obstacle_tracker/ObstacleTrackerNodelet: the thin ROS adapter around core::Pipeline.
-//   subscribes  image (image_transport, queue 1, ~image_transport picks the transport)
+//   subscribes  image (image_transport, ~image_transport picks the transport)
 //               camera_info (only with ~use_camera_info; exact-time synchronised with image)
+//               The callbacks hand each frame to one processing thread through a FrameSlot
+//               (frame_slot.h): a frame is dropped only for a newer one while an earlier frame
+//               is being processed.
 //   publishes   ~obstacles (ObstacleArray, header = the input image's header, one per processed
 //               frame, empty when nothing is there), ~debug_image (overlay, only when subscribed),
 //               /diagnostics
@@ -18,6 +21,7 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <diagnostic_updater/diagnostic_updater.h>
@@ -38,6 +42,7 @@
 #include "obstacle_tracker/ObstacleTrackerConfig.h"
 #include "obstacle_tracker/core/pipeline.h"
 #include "obstacle_tracker/ros/camera_geometry.h"
+#include "obstacle_tracker/ros/frame_slot.h"
 #include "obstacle_tracker/ros/image_conversion.h"
 
 namespace obstacle_tracker {
@@ -55,14 +60,23 @@ class ObstacleTrackerNodelet : public nodelet::Nodelet {
   void imageCallback(const sensor_msgs::ImageConstPtr& image);
   void imageInfoCallback(const sensor_msgs::ImageConstPtr& image, const sensor_msgs::CameraInfoConstPtr& info);
   void countInput(const sensor_msgs::ImageConstPtr& image);
+  void processFrames();
   void process(const sensor_msgs::ImageConstPtr& image, const sensor_msgs::CameraInfoConstPtr& info);
   void fillGeometry(const sensor_msgs::Image& image, const sensor_msgs::CameraInfo& info, ObstacleArray& out);
   void reconfigure(ObstacleTrackerConfig& config, std::uint32_t level);
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
   void diagnosticsTimer(const ros::WallTimerEvent&);
 
-  // Pipeline and parameters: the pipeline runs in the image callback; dynamic_reconfigure
-  // changes its parameters from another callback (another thread in the standalone node).
+  // Frames from the callbacks to processFrames(), which runs on worker_.
+  struct PendingFrame {
+    sensor_msgs::ImageConstPtr image;
+    sensor_msgs::CameraInfoConstPtr info;  // null without ~use_camera_info
+  };
+  bridge::FrameSlot<PendingFrame> slot_;
+  std::thread worker_;
+
+  // Pipeline and parameters: the pipeline runs on worker_; dynamic_reconfigure changes its
+  // parameters from a callback thread.
   std::mutex pipeline_mutex_;
   std::unique_ptr<core::Pipeline> pipeline_;
   core::Params params_;
@@ -88,8 +102,7 @@ class ObstacleTrackerNodelet : public nodelet::Nodelet {
   std::unique_ptr<diagnostic_updater::Updater> updater_;
   ros::WallTimer diagnostics_timer_;
 
-  // Per-frame helpers (one frame at a time, under frame_mutex_).
-  std::mutex frame_mutex_;
+  // Per-frame helpers, used on worker_ only.
   bridge::FrameConverter converter_;
   bridge::CameraGeometry camera_;
   sensor_msgs::CameraInfo last_info_;
@@ -114,6 +127,7 @@ class ObstacleTrackerNodelet : public nodelet::Nodelet {
   ros::WallTime window_start_;
   bool have_input_seq_ = false;
   std::uint32_t last_input_seq_ = 0;
+  std::uint64_t slot_drops_counted_ = 0;  // slot_.dropped() already added to the windows
   std::uint64_t duplicates_ = 0;
   std::uint64_t unsynced_since_pair_ = 0;
   std::size_t last_obstacle_count_ = 0;

@@ -119,7 +119,9 @@ TEST(Load, NewestFrameBoundedMemoryDropsCounted) {
   const double win = std::min(10.0, (duration - warmup) / 2.0);  // latency comparison windows
   ASSERT_GT(win, 1.0) << "duration too short";
 
-  ros::Publisher pub = nh.advertise<sensor_msgs::Image>("/load/image", 1);
+  // A publisher queue deep enough that the sending side does not drop (a frame it dropped would
+  // look like one the tracker dropped while idle); the nodelet's own queue is the one under test.
+  ros::Publisher pub = nh.advertise<sensor_msgs::Image>("/load/image", 16);
   ros::Subscriber out_sub = nh.subscribe("/tracker/obstacles", 10, onOutput);
   ros::Subscriber diag_sub = nh.subscribe("/diagnostics", 10, onDiagnostics);
   const ros::WallTime wait_end = ros::WallTime::now() + ros::WallDuration(30.0);
