@@ -141,7 +141,7 @@ void ObstacleTrackerNodelet::onInit() {
   const image_transport::TransportHints hints("raw", ros::TransportHints(), pnh);
   // The callbacks only hand frames to the slot, so these queues hardly ever hold more than one;
   // room for a burst, so that the slot (not roscpp) decides what is dropped.
-  const std::uint32_t queue = 4;
+  const std::uint32_t queue = 2;
   if (use_camera_info_) {
     image_filter_.reset(new image_transport::SubscriberFilter(*it_, "image", queue, hints));
     image_filter_->registerCallback(boost::bind(&ObstacleTrackerNodelet::countInput, this, boost::placeholders::_1));

@@ -5,7 +5,7 @@
 // and then only for a newer one (the tracker always works on the newest image). A subscription
 // queue of size 1 does not keep that rule: two frames that arrive together (a transport burst, a
 // callback thread woken late on a loaded machine) drop the first one although the tracker is
-// idle. Here frames that arrive while nothing is processed are all kept (up to kIdleBacklog) and
+// idle. Here frames that arrive while nothing is processed are kept (up to kIdleBacklog) and
 // processed in order; frames that arrive during processing replace whatever waits.
 // ROS-free and header-only so that its GoogleTest needs no ROS master.
 #pragma once
@@ -23,9 +23,9 @@ namespace bridge {
 template <typename Frame>
 class FrameSlot {
  public:
-  // Frames kept while the processing thread is idle but not yet awake: far more than a burst
-  // brings, few enough that a stalled thread cannot pile up old frames.
-  static constexpr std::size_t kIdleBacklog = 4;
+  // Frames kept while the processing thread is idle but not yet awake: the two of a burst; few
+  // enough that a stalled thread cannot pile up old frames (each a full image in memory).
+  static constexpr std::size_t kIdleBacklog = 2;
 
   // Called by the subscription callbacks (any thread). Never blocks on processing.
   void offer(Frame frame) {

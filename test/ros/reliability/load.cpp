@@ -11,8 +11,8 @@
 //   - the manager's resident set (VmRSS) grows by less than 5 MiB between the end of warm-up and
 //     the end (medians of 5 s of samples at 10 Hz);
 //   - the manager is alive at the end, frames were answered in the last window, and the
-//     diagnostics report a dropped-frame count > 0 (the queue of size 1 drops what the tracker
-//     cannot take). Latency is printed as a figure.
+//     diagnostics' dropped-frame count is the number of frames sent and never answered.
+//     Latency is printed as a figure.
 // Parameters (private): duration (s), rate (Hz), width, height, encoding (mono8 | bgr8),
 // warmup (s, default min(10, duration / 4)).
 #include <algorithm>
@@ -39,9 +39,16 @@ namespace rt = obstacle_tracker::ros_test;
 
 namespace {
 
-// Earlier frames still answered after the last one was sent: in processing, in the subscription
-// queue, and in the loopback socket (a few 2.7 MB frames).
-constexpr int kMaxAnsweredAfterEnd = 8;
+// Our publisher's queue: deep enough that the sending side hardly ever drops (a frame it dropped
+// would look like one the tracker dropped while idle); the nodelet's own queueing is under test.
+constexpr int kPublisherQueue = 16;
+// Earlier frames that can still be answered after the last one was sent without any backlog in
+// the nodelet: everything that the path's fixed-size queues hold (our publisher's, the nodelet's
+// subscription queue of 2, the FrameSlot's idle backlog of 2, the frame in processing) and a few
+// 2.7 MB frames in the loopback socket. A nodelet that queued instead of dropping would answer
+// the whole backlog: hundreds of frames after a minute at 200 Hz.
+constexpr int kNodeletHeldFrames = 2 + 2 + 1;  // subscription queue, FrameSlot backlog, processing
+constexpr int kMaxAnsweredAfterEnd = kPublisherQueue + kNodeletHeldFrames + 3;
 
 struct Sample {
   double t;      // wall seconds since the start of the load
@@ -119,10 +126,10 @@ TEST(Load, NewestFrameBoundedMemoryDropsCounted) {
   const double win = std::min(10.0, (duration - warmup) / 2.0);  // latency comparison windows
   ASSERT_GT(win, 1.0) << "duration too short";
 
-  // A publisher queue deep enough that the sending side does not drop (a frame it dropped would
-  // look like one the tracker dropped while idle); the nodelet's own queue is the one under test.
-  ros::Publisher pub = nh.advertise<sensor_msgs::Image>("/load/image", 16);
-  ros::Subscriber out_sub = nh.subscribe("/tracker/obstacles", 10, onOutput);
+  ros::Publisher pub = nh.advertise<sensor_msgs::Image>("/load/image", kPublisherQueue);
+  // Deep: on a loaded machine this node's own callback thread falls behind, and an answer lost
+  // here would count as a frame the tracker dropped.
+  ros::Subscriber out_sub = nh.subscribe("/tracker/obstacles", 10000, onOutput);
   ros::Subscriber diag_sub = nh.subscribe("/diagnostics", 10, onDiagnostics);
   const ros::WallTime wait_end = ros::WallTime::now() + ros::WallDuration(30.0);
   while (ros::WallTime::now() < wait_end && (pub.getNumSubscribers() == 0 || out_sub.getNumPublishers() == 0)) {
@@ -220,8 +227,18 @@ TEST(Load, NewestFrameBoundedMemoryDropsCounted) {
       << "frames dropped with no earlier frame in processing (first 20):" << delivery.idle_drops;
   EXPECT_TRUE(delivery.last_answered) << "the last frame sent was not answered";
   EXPECT_LE(answered_after_end, kMaxAnsweredAfterEnd) << "frames are queued instead of dropped";
-  EXPECT_LT(rss_end - rss_warm, 5.0) << "resident set grew by " << rss_end - rss_warm << " MiB";
-  EXPECT_GT(state->dropped_total, 0.0) << "diagnostics report no dropped frame at " << rate << " Hz";
+  // The nodelet's fixed queues may fill up for the first time after warm-up (a stalled thread on a
+  // loaded machine) and the allocator keeps that memory: growth beyond 5 MiB plus what they hold
+  // is unbounded growth.
+  const double held_mib = kNodeletHeldFrames * static_cast<double>(img.data.size()) / (1024.0 * 1024.0);
+  EXPECT_LT(rss_end - rss_warm, 5.0 + held_mib)
+      << "resident set grew by " << rss_end - rss_warm << " MiB (the queues hold " << held_mib << " MiB)";
+  // Whatever this machine's speed, the diagnostics count exactly the frames that went unanswered.
+  EXPECT_EQ(state->dropped_total, static_cast<double>(delivery.dropped))
+      << "diagnostics' dropped frames against the frames sent and never answered";
+  if (delivery.dropped == 0) {
+    std::printf("load: the tracker kept up with %.0f Hz: nothing was dropped, the drop rule was not exercised\n", rate);
+  }
 }
 
 int main(int argc, char** argv) {
