@@ -46,6 +46,7 @@
 #include "obstacle_tracker/core/looming.h"
 #include "obstacle_tracker/core/saliency.h"
 #include "obstacle_tracker/core/segmentation.h"
+#include "obstacle_tracker/core/warmup.h"
 
 namespace obstacle_tracker {
 namespace core {
@@ -785,6 +786,28 @@ const std::vector<Obstacle>& Pipeline::startTrack(const cv::Mat& frame, double s
 }
 
 void Pipeline::reset() { impl_->resetAll(); }
+
+void Pipeline::prepare(cv::Size size, int type) {
+  const WarmupClip clip = makeWarmupClip(size, type);
+  const int next_id = impl_->next_id;
+  impl_->resetAll();
+  // Searching first (whole-frame saliency, auto-initialisation over a frame pair), then a filter
+  // started on the box and tracking.
+  process(clip.frames[0], 0.0);
+  process(clip.frames[1], 1.0 / 30.0);
+  impl_->resetAll();
+  for (std::size_t i = 0; i < clip.frames.size(); ++i) {
+    const double stamp = static_cast<double>(i) / 30.0;
+    if (i == 0) {
+      startTrack(clip.frames[0], stamp, clip.box);
+    } else {
+      process(clip.frames[i], stamp);
+    }
+  }
+  impl_->resetAll();
+  impl_->next_id = next_id;
+  impl_->frame_size = cv::Size();
+}
 
 TrackState Pipeline::state() const {
   const auto& out = impl_->out;

@@ -61,6 +61,7 @@ class ObstacleTrackerNodelet : public nodelet::Nodelet {
   void imageInfoCallback(const sensor_msgs::ImageConstPtr& image, const sensor_msgs::CameraInfoConstPtr& info);
   void countInput(const sensor_msgs::ImageConstPtr& image);
   void processFrames();
+  void prepareFor(const cv::Mat& frame);  // under pipeline_mutex_
   void process(const sensor_msgs::ImageConstPtr& image, const sensor_msgs::CameraInfoConstPtr& info);
   void fillGeometry(const sensor_msgs::Image& image, const sensor_msgs::CameraInfo& info, ObstacleArray& out);
   void reconfigure(ObstacleTrackerConfig& config, std::uint32_t level);
@@ -103,6 +104,8 @@ class ObstacleTrackerNodelet : public nodelet::Nodelet {
   ros::WallTimer diagnostics_timer_;
 
   // Per-frame helpers, used on worker_ only.
+  cv::Size prepared_size_;  // the pipeline was last prepared for frames of this size and type
+  int prepared_type_ = -1;
   bridge::FrameConverter converter_;
   bridge::CameraGeometry camera_;
   sensor_msgs::CameraInfo last_info_;
