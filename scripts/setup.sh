@@ -30,7 +30,7 @@ PACKAGES=(
   rosbash python3-rostopic python3-rosnode python3-rosmsg python3-rosparam python3-roslaunch python3-diagnostic-msgs
   python3-numpy python3-matplotlib python3-yaml python3-opencv
   clang libclang-rt-14-dev valgrind
-  rviz xvfb imagemagick
+  rviz xvfb imagemagick stress-ng
 )
 
 deps() {

@@ -788,6 +788,8 @@ const std::vector<Obstacle>& Pipeline::startTrack(const cv::Mat& frame, double s
 void Pipeline::reset() { impl_->resetAll(); }
 
 void Pipeline::prepare(cv::Size size, int type) {
+  Impl::checkFrame(cv::Mat(1, 1, type), "Pipeline::prepare");
+  if (size.width < kWarmupMinSide || size.height < kWarmupMinSide) return;  // nothing worth warming
   const WarmupClip clip = makeWarmupClip(size, type);
   const int next_id = impl_->next_id;
   impl_->resetAll();

@@ -17,9 +17,9 @@ constexpr int kWarmupFrames = 4;  // searching, start, tracking twice (scale sea
 }  // namespace
 
 WarmupClip makeWarmupClip(cv::Size size, int type) {
-  if (size.width < 16 || size.height < 16) {
+  if (size.width < kWarmupMinSide || size.height < kWarmupMinSide) {
     throw std::invalid_argument("makeWarmupClip: size " + std::to_string(size.width) + "x" +
-                                std::to_string(size.height) + " below 16x16");
+                                std::to_string(size.height) + " has a side below " + std::to_string(kWarmupMinSide));
   }
   if (type != CV_8UC1 && type != CV_8UC3) throw std::invalid_argument("makeWarmupClip: type must be CV_8UC1 or CV_8UC3");
   // A vertical gradient with fixed-seed noise (a sky), and a dark blob of a tenth of the short

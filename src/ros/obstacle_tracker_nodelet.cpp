@@ -115,7 +115,9 @@ void ObstacleTrackerNodelet::onInit() {
     tf_listener_.reset(new tf2_ros::TransformListener(*tf_buffer_, nh));
   }
 
-  obstacles_pub_ = pnh.advertise<ObstacleArray>("obstacles", 1);
+  // Every answer reaches the planner: with a queue of 1 a subscriber whose socket is a moment
+  // late (a loaded machine) loses ObstacleArrays; they are small, so keep a second's worth.
+  obstacles_pub_ = pnh.advertise<ObstacleArray>("obstacles", 30);
   image_transport::ImageTransport private_it(pnh);
   debug_pub_ = private_it.advertise("debug_image", 1);
 
@@ -218,7 +220,7 @@ void ObstacleTrackerNodelet::processFrames() {
       NODELET_ERROR_THROTTLE(5.0, "frame processing: unknown error");
     }
     frame = PendingFrame();  // the image's memory goes back while we wait
-    slot_.done();
+    slot_.done();  // also for frames refused or skipped (done() twice is harmless)
     const std::uint64_t dropped = slot_.dropped();
     std::lock_guard<std::mutex> lock(stats_mutex_);
     window_.dropped += dropped - slot_drops_counted_;
@@ -231,9 +233,14 @@ void ObstacleTrackerNodelet::prepareFor(const cv::Mat& frame) {
   // The first frame of a size would otherwise make the pipeline's buffers and OpenCV's lazy
   // tables (several times a steady frame's time); a new size or type starts new tracks anyway.
   const auto t0 = std::chrono::steady_clock::now();
-  pipeline_->prepare(frame.size(), frame.type());
-  prepared_size_ = frame.size();
+  prepared_size_ = frame.size();  // once per size and type, even when it fails
   prepared_type_ = frame.type();
+  try {
+    pipeline_->prepare(frame.size(), frame.type());
+  } catch (const std::exception& e) {  // the frame is still processed, only without warm-up
+    NODELET_WARN("pipeline warm-up for %dx%d frames failed: %s", frame.cols, frame.rows, e.what());
+    return;
+  }
   NODELET_INFO("pipeline prepared for %dx%d %s frames in %.1f ms", frame.cols, frame.rows,
                frame.channels() == 1 ? "grey" : "colour",
                1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
@@ -303,6 +310,9 @@ void ObstacleTrackerNodelet::process(const sensor_msgs::ImageConstPtr& image,
     out->obstacles.resize(obstacles_.size());
     for (std::size_t i = 0; i < obstacles_.size(); ++i) bridge::toMessage(obstacles_[i], out->obstacles[i]);
     if (info) fillGeometry(*image, *info, *out);
+    // The frame is processed once its answer exists: a frame that arrives after the answer (the
+    // overlay and statistics below are still being done) is kept, not dropped (frame_slot.h).
+    slot_.done();
     obstacles_pub_.publish(out);
 
     if (debug_pub_.getNumSubscribers() > 0) {

@@ -95,10 +95,12 @@ TEST(PipelinePrepare, IdsContinueAfterAPrepareMidRun) {
   EXPECT_EQ(second_id, first_id + 1);
 }
 
-TEST(PipelinePrepare, RefusesWhatProcessRefuses) {
+TEST(PipelinePrepare, RefusesWhatProcessRefusesAndSkipsTinyFrames) {
   oc::Pipeline pipeline;
-  EXPECT_THROW(pipeline.prepare(cv::Size(8, 8), CV_8UC1), std::invalid_argument);
+  EXPECT_NO_THROW(pipeline.prepare(cv::Size(8, 8), CV_8UC1));     // too small to warm: nothing
+  EXPECT_NO_THROW(pipeline.prepare(cv::Size(4000, 1), CV_8UC3));
   EXPECT_THROW(pipeline.prepare(cv::Size(64, 64), CV_16UC1), std::invalid_argument);
+  EXPECT_THROW(oc::makeWarmupClip(cv::Size(15, 64), CV_8UC1), std::invalid_argument);
   EXPECT_NO_THROW(pipeline.prepare(cv::Size(16, 16), CV_8UC1));
   const oc::WarmupClip clip = oc::makeWarmupClip(cv::Size(100, 60), CV_8UC3);
   ASSERT_FALSE(clip.frames.empty());

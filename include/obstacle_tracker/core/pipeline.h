@@ -43,8 +43,8 @@ class Pipeline {
   // Runs the pipeline once over a few synthetic frames of this size and type (CV_8UC1 or
   // CV_8UC3), then forgets them: buffers, OpenCV's lazily built tables and threads exist before
   // the first real frame, whose processing time is then that of any other. Tracks, ids and
-  // results afterwards are those of a pipeline that was never prepared. Throws
-  // std::invalid_argument for a size below 16x16 or another type.
+  // results afterwards are those of a pipeline that was never prepared. A size with a side below
+  // 16 px is not worth warming up (nothing happens); another type throws std::invalid_argument.
   void prepare(cv::Size size, int type);
 
   // State of the main (first) track, kSearching when there is none.

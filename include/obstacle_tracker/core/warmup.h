@@ -18,7 +18,11 @@ struct WarmupClip {
   cv::Rect2f box;               // the blob in frames[0]
 };
 
-// size at least 16x16; type CV_8UC1 or CV_8UC3 (throws std::invalid_argument otherwise).
+// Smallest side of a warm-up clip: smaller frames are processed in no time anyway.
+constexpr int kWarmupMinSide = 16;
+
+// size at least kWarmupMinSide on both sides; type CV_8UC1 or CV_8UC3 (throws
+// std::invalid_argument otherwise).
 WarmupClip makeWarmupClip(cv::Size size, int type);
 
 }  // namespace core

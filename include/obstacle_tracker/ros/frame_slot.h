@@ -56,7 +56,8 @@ class FrameSlot {
     return true;
   }
 
-  // The frame from take() is processed; frames that arrive from now on are kept again.
+  // The frame from take() is processed; frames that arrive from now on are kept again. Calling
+  // it again before the next take() changes nothing.
   void done() {
     std::lock_guard<std::mutex> lock(mutex_);
     busy_ = false;
