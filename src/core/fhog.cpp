@@ -126,8 +126,8 @@ void FhogExtractor::compute(const cv::Mat& patch, int cell, cv::Mat& out) {
         cv::v_float32 best = zero;
         cv::v_float32 bin = zero;
         for (int k = 0; k < 9; ++k) {
-          const cv::v_float32 d =
-              cv::v_muladd(cv::vx_setall_f32(dir.cx[k]), vdx, cv::vx_setall_f32(dir.cy[k]) * vdy);
+          // Two roundings as in the scalar tail, never a fused multiply-add (NEON's may fuse).
+          const cv::v_float32 d = cv::vx_setall_f32(dir.cx[k]) * vdx + cv::vx_setall_f32(dir.cy[k]) * vdy;
           const cv::v_float32 ad = cv::v_abs(d);
           const cv::v_float32 better = ad > best;
           best = cv::v_select(better, ad, best);

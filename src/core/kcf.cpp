@@ -19,6 +19,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "obstacle_tracker/core/fhog.h"
+#include "obstacle_tracker/core/portable_math.h"
 
 namespace obstacle_tracker {
 namespace core {
@@ -295,7 +296,7 @@ struct KcfTracker::Impl {
     for (int ch = 0; ch < kChannels; ++ch) {
       cv::Mat plane = feat.rowRange(ch * rows, (ch + 1) * rows);
       cv::multiply(plane, cos_window, plane);
-      energy += plane.dot(plane);
+      energy += sumOfSquares(plane);  // not Mat::dot: CPU-dependent order (portable_math.h)
       cv::Mat dst = out_f.rowRange(ch * rows, (ch + 1) * rows);
       forward(plane, dst);
     }
@@ -323,7 +324,7 @@ struct KcfTracker::Impl {
       const float d = std::max(0.0f, xx + zz - 2.0f * cp[i]);
       kp[i] = d * scale;
     }
-    cv::exp(k, k);
+    expInPlace(k);  // not cv::exp: its result depends on the CPU (portable_math.h)
     forward(k, kf);
   }
 
@@ -436,11 +437,13 @@ struct KcfTracker::Impl {
       zf.copyTo(model_xf);
       new_alphaf.copyTo(model_alphaf);
     } else {
-      cv::addWeighted(model_xf, 1.0 - eta, zf, eta, 0.0, model_xf);
-      cv::addWeighted(model_alphaf, 1.0 - eta, new_alphaf, eta, 0.0, model_alphaf);
+      // Not cv::addWeighted: its result depends on the CPU (portable_math.h).
+      blendInPlace(model_xf, zf, eta);
+      blendInPlace(model_alphaf, new_alphaf, eta);
     }
     // ||x_model||^2 by Parseval (unnormalised forward DFT).
-    model_xx = static_cast<float>(cv::norm(model_xf, cv::NORM_L2SQR) / static_cast<double>(n));
+    // Not cv::norm: its summation order is the SIMD width's, which differs on ARM (portable_math.h).
+    model_xx = static_cast<float>(sumOfSquares(model_xf) / static_cast<double>(n));
   }
 
   // Response of the model on the window (c, ws) into out (Henriques 2015, eq. 22).
