@@ -7,8 +7,11 @@ target_include_directories(obstacle_tracker_core SYSTEM PUBLIC ${OpenCV_INCLUDE_
 target_link_libraries(obstacle_tracker_core PUBLIC ${OpenCV_LIBS})
 set_target_properties(obstacle_tracker_core PROPERTIES POSITION_INDEPENDENT_CODE ON)
 
-# Synthetic flight scenes (tests, demo, benchmarks): src/scene.
+# Synthetic flight scenes (tests, demo, benchmarks): src/scene. scene_io writes image files.
 file(GLOB OT_SCENE_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/scene/*.cpp)
+if(NOT OT_WITH_IMAGE_IO)
+  list(FILTER OT_SCENE_SOURCES EXCLUDE REGEX "scene_io\\.cpp$")
+endif()
 if(OT_SCENE_SOURCES)
   add_library(obstacle_tracker_scene ${OT_SCENE_SOURCES})
   target_link_libraries(obstacle_tracker_scene PUBLIC obstacle_tracker_core)
@@ -20,7 +23,11 @@ if(OT_SCENE_SOURCES)
 endif()
 
 # Evaluation: ground-truth parsing, OTB / long-term metrics, OpenCV reference trackers: src/eval.
+# Without image I/O (cross-builds) only the metrics.
 file(GLOB OT_EVAL_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/eval/*.cpp)
+if(NOT OT_WITH_IMAGE_IO)
+  list(FILTER OT_EVAL_SOURCES INCLUDE REGEX "metrics\\.cpp$")
+endif()
 if(OT_EVAL_SOURCES)
   add_library(obstacle_tracker_eval ${OT_EVAL_SOURCES})
   target_link_libraries(obstacle_tracker_eval PUBLIC obstacle_tracker_core)
@@ -32,6 +39,9 @@ list(APPEND OT_LIBS obstacle_tracker_core)
 # Command-line tools: each src/tools/NAME.cpp is the main of the executable NAME, linked with
 # every library above. Under catkin they land in devel/lib/obstacle_tracker (rosrun finds them).
 file(GLOB OT_TOOL_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/tools/*.cpp)
+if(NOT OT_WITH_IMAGE_IO)  # the tools that read no image file
+  list(FILTER OT_TOOL_SOURCES INCLUDE REGEX "/(print_params|scene_boxes)\\.cpp$")
+endif()
 foreach(src ${OT_TOOL_SOURCES})
   get_filename_component(name ${src} NAME_WE)
   add_executable(${name} ${src})

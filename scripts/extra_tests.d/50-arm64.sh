@@ -1,0 +1,63 @@
+#!/usr/bin/env bash
+# Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
+#
+# ARM64: the core, its IO-free tools and the core's GoogleTest suite cross-built with Debian's
+# multiarch packages (cmake/aarch64-linux-gnu.cmake) and run under qemu-user; then scene_boxes on
+# generated scenes, on arm64 and on this machine, must give the same OTB scores within 0.02
+# (the per-frame boxes are compared too and reported). Installs what it needs on first use
+# (dpkg --add-architecture arm64; root or sudo).
+#   OT_BUILD_DIR        the native build with scene_boxes (default _build)
+#   OT_ARM64_BUILD_DIR  the cross-build (default _build/arm64)
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+export PATH=/usr/bin:/bin:/usr/sbin:/sbin:$PATH
+BUILD=${OT_BUILD_DIR:-_build}
+ARM=${OT_ARM64_BUILD_DIR:-_build/arm64}
+JOBS=${JOBS:-$(nproc)}
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO=sudo; fi
+
+PACKAGES=(g++-aarch64-linux-gnu qemu-user libopencv-core-dev:arm64 libopencv-imgproc-dev:arm64 libgtest-dev:arm64)
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "== 50-arm64: installing ${missing[*]}"
+  if ! dpkg --print-foreign-architectures | grep -qx arm64; then $SUDO dpkg --add-architecture arm64; fi
+  $SUDO apt-get update -q
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -q --no-install-recommends "${missing[@]}"
+fi
+
+echo "== 50-arm64: cross-build ($ARM)"
+cmake -S . -B "$ARM" -DCMAKE_TOOLCHAIN_FILE=cmake/aarch64-linux-gnu.cmake -DOT_CORE_ONLY=ON \
+  -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build "$ARM" -j"$JOBS"
+cmake --build "$ARM" -j"$JOBS" --target tests
+file "$ARM/scene_boxes" | grep -q "ARM aarch64" || { echo "50-arm64: $ARM/scene_boxes is not an arm64 program"; exit 1; }
+
+echo "== 50-arm64: the core's tests under qemu-aarch64"
+ctest --test-dir "$ARM" -j"$JOBS" --output-on-failure --timeout 1200
+
+echo "== 50-arm64: scene_boxes, arm64 against $(uname -m)"
+[ -x "$BUILD/devel/lib/obstacle_tracker/scene_boxes" ] && NATIVE=$BUILD/devel/lib/obstacle_tracker/scene_boxes \
+  || NATIVE=$BUILD/scene_boxes
+TMP=$(mktemp -d /tmp/ot_arm64_XXXXXX)
+trap 'rm -rf "$TMP"' EXIT
+status=0
+for scene in "crossing+jerk 480x360" "bird 480x360" "approach 640x480"; do
+  set -- $scene
+  for init in gt auto; do
+    args=(--scenario "$1" --seed 3 --frames 150 --size "$2" --init "$init")
+    "$NATIVE" "${args[@]}" > "$TMP/native.txt"
+    qemu-aarch64 "$ARM/scene_boxes" "${args[@]}" > "$TMP/arm64.txt"
+    same=$(paste -d'\n' "$TMP/native.txt" "$TMP/arm64.txt" | paste - - | awk -F'\t' '$1 == $2' | wc -l)
+    total=$(wc -l < "$TMP/native.txt")
+    read -r _ _ _ p_native _ auc_native < <(tail -1 "$TMP/native.txt")
+    read -r _ _ _ p_arm _ auc_arm < <(tail -1 "$TMP/arm64.txt")
+    verdict=$(awk -v a="$auc_native" -v b="$auc_arm" 'BEGIN { d = a - b; if (d < 0) d = -d; print (d <= 0.02) ? "ok" : "FAILED" }')
+    echo "$verdict: $1 $2 --init $init: AUC $auc_native ($(uname -m)) vs $auc_arm (arm64), precision $p_native vs $p_arm; $same of $total lines identical"
+    [ "$verdict" = ok ] || status=1
+  done
+done
+exit $status
