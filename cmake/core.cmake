@@ -15,9 +15,6 @@ endif()
 if(OT_SCENE_SOURCES)
   add_library(obstacle_tracker_scene ${OT_SCENE_SOURCES})
   target_link_libraries(obstacle_tracker_scene PUBLIC obstacle_tracker_core)
-  # Same seed -> same bytes on every machine: no fused multiply-add contraction (aarch64 GCC and
-  # clang would otherwise fuse a*b+c differently from x86-64).
-  target_compile_options(obstacle_tracker_scene PRIVATE -ffp-contract=off)
   set_target_properties(obstacle_tracker_scene PROPERTIES POSITION_INDEPENDENT_CODE ON)
   list(APPEND OT_LIBS obstacle_tracker_scene)
 endif()

@@ -1,12 +1,18 @@
 // Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
 //
 // scene_boxes --scenario NAME --seed N [--frames N] [--size WxH] [--grey] [--init gt|auto]
+//             [--save FILE | --load FILE]
 // Tracks a generated flight scene rendered in memory (no image files, so it also runs where
 // OpenCV has no image I/O: the ARM64 cross-build under qemu-user) and prints, per frame, the
 // main obstacle's box and confidence with every float digit, then the OTB scores against the
 // scene's ground truth. Two machines that print the same lines track identically; the last line
 // (`# scores ...`) is what the cross-machine check compares within its tolerance.
+// The renderer's own OpenCV calls (blur, warps) round differently on another CPU, so to compare
+// trackers the frames are rendered once: --save writes them and their ground truth to FILE (raw
+// bytes, this tool's own format), --load tracks the frames of such a file instead of rendering.
+#include <cstdint>
 #include <cstdio>
+#include <fstream>
 #include <iostream>
 #include <stdexcept>
 #include <string>
@@ -26,7 +32,7 @@ namespace {
 
 void usage(std::ostream& o) {
   o << "usage: scene_boxes --scenario NAME[+MODIFIER...] --seed N [--frames N] [--size WxH] [--grey]\n"
-       "                   [--init gt|auto]\n";
+       "                   [--init gt|auto] [--save FILE | --load FILE]\n";
 }
 
 struct Options {
@@ -36,7 +42,82 @@ struct Options {
   cv::Size size{480, 360};
   bool grey = false;
   bool from_box = false;
+  std::string save, load;
 };
+
+struct Clip {
+  std::vector<cv::Mat> frames;
+  std::vector<cv::Rect2f> truth;  // empty box: target absent
+  double fps = 30.0;
+};
+
+constexpr std::uint32_t kMagic = 0x4F54534Bu;  // file tag of --save / --load
+
+Clip render(const Options& o) {
+  os::SceneGenerator gen = os::makeScenario(o.scenario, o.seed, o.frames, o.size);
+  Clip c;
+  c.fps = gen.fps();
+  for (int i = 0; i < gen.frameCount(); ++i) {
+    cv::Mat frame;
+    os::FrameTruth t;
+    gen.renderFrame(i, frame, &t);
+    if (o.grey && frame.channels() == 3) cv::cvtColor(frame, frame, cv::COLOR_BGR2GRAY);
+    const os::ObstacleTruth* main = t.find(1);
+    c.frames.push_back(frame);
+    c.truth.push_back((main != nullptr && main->visible) ? main->box : cv::Rect2f());
+  }
+  return c;
+}
+
+template <typename T>
+void put(std::ofstream& f, const T& v) {
+  f.write(reinterpret_cast<const char*>(&v), sizeof(v));
+}
+template <typename T>
+T get(std::ifstream& f) {
+  T v{};
+  if (!f.read(reinterpret_cast<char*>(&v), sizeof(v))) throw std::runtime_error("truncated clip file");
+  return v;
+}
+
+// Little-endian hosts only (x86-64, aarch64): the file is the memory image of the values.
+void saveClip(const Clip& c, const std::string& path) {
+  std::ofstream f(path, std::ios::binary);
+  put(f, kMagic);
+  put(f, static_cast<std::uint32_t>(c.frames.size()));
+  put(f, c.fps);
+  for (std::size_t i = 0; i < c.frames.size(); ++i) {
+    const cv::Mat m = c.frames[i].isContinuous() ? c.frames[i] : c.frames[i].clone();
+    put(f, static_cast<std::int32_t>(m.rows));
+    put(f, static_cast<std::int32_t>(m.cols));
+    put(f, static_cast<std::int32_t>(m.type()));
+    put(f, c.truth[i]);
+    f.write(reinterpret_cast<const char*>(m.data), static_cast<std::streamsize>(m.total() * m.elemSize()));
+  }
+  if (!f) throw std::runtime_error("cannot write " + path);
+}
+
+Clip loadClip(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  if (!f) throw std::runtime_error("cannot open " + path);
+  if (get<std::uint32_t>(f) != kMagic) throw std::runtime_error(path + " is not a scene_boxes --save file");
+  const std::uint32_t n = get<std::uint32_t>(f);
+  Clip c;
+  c.fps = get<double>(f);
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const int rows = get<std::int32_t>(f), cols = get<std::int32_t>(f), type = get<std::int32_t>(f);
+    if (rows < 1 || cols < 1 || rows > 10000 || cols > 10000 || (type != CV_8UC1 && type != CV_8UC3)) {
+      throw std::runtime_error(path + ": bad frame header");
+    }
+    c.truth.push_back(get<cv::Rect2f>(f));
+    cv::Mat m(rows, cols, type);
+    if (!f.read(reinterpret_cast<char*>(m.data), static_cast<std::streamsize>(m.total() * m.elemSize()))) {
+      throw std::runtime_error("truncated clip file");
+    }
+    c.frames.push_back(m);
+  }
+  return c;
+}
 
 Options parse(int argc, char** argv) {
   Options o;
@@ -57,6 +138,10 @@ Options parse(int argc, char** argv) {
       const std::size_t x = v.find('x');
       if (x == std::string::npos) throw std::invalid_argument("--size wants WxH, got " + v);
       o.size = cv::Size(std::stoi(v.substr(0, x)), std::stoi(v.substr(x + 1)));
+    } else if (a == "--save") {
+      o.save = value();
+    } else if (a == "--load") {
+      o.load = value();
     } else if (a == "--grey") {
       o.grey = true;
     } else if (a == "--init") {
@@ -71,6 +156,7 @@ Options parse(int argc, char** argv) {
     }
   }
   if (o.frames < 1) throw std::invalid_argument("--frames must be at least 1");
+  if (!o.save.empty() && !o.load.empty()) throw std::invalid_argument("--save and --load exclude each other");
   return o;
 }
 
@@ -79,24 +165,19 @@ Options parse(int argc, char** argv) {
 int main(int argc, char** argv) {
   try {
     const Options o = parse(argc, argv);
-    os::SceneGenerator gen = os::makeScenario(o.scenario, o.seed, o.frames, o.size);
+    const Clip clip = o.load.empty() ? render(o) : loadClip(o.load);
+    if (!o.save.empty()) saveClip(clip, o.save);
     oc::Pipeline pipeline;
-    std::vector<cv::Rect2f> predicted, truth;
+    std::vector<cv::Rect2f> predicted;
     bool started = !o.from_box;
-    cv::Mat frame;
-    for (int i = 0; i < gen.frameCount(); ++i) {
-      os::FrameTruth t;
-      gen.renderFrame(i, frame, &t);
-      if (o.grey && frame.channels() == 3) cv::cvtColor(frame, frame, cv::COLOR_BGR2GRAY);
-      const os::ObstacleTruth* main = t.find(1);
-      const cv::Rect2f gt = (main != nullptr && main->visible) ? main->box : cv::Rect2f();
-      const double stamp = i / gen.fps();
+    for (std::size_t i = 0; i < clip.frames.size(); ++i) {
+      const double stamp = static_cast<double>(i) / clip.fps;
       const std::vector<oc::Obstacle>* out = nullptr;
-      if (!started && gt.area() > 0) {
-        out = &pipeline.startTrack(frame, stamp, gt);
+      if (!started && clip.truth[i].area() > 0) {
+        out = &pipeline.startTrack(clip.frames[i], stamp, clip.truth[i]);
         started = true;
       } else if (started) {
-        out = &pipeline.process(frame, stamp);
+        out = &pipeline.process(clip.frames[i], stamp);
       }
       cv::Rect2f box;
       float confidence = 0.0f;
@@ -104,10 +185,10 @@ int main(int argc, char** argv) {
         box = out->front().box;
         confidence = out->front().confidence;
       }
-      std::printf("%d %.9g %.9g %.9g %.9g %.9g\n", i, box.x, box.y, box.width, box.height, confidence);
+      std::printf("%zu %.9g %.9g %.9g %.9g %.9g\n", i, box.x, box.y, box.width, box.height, confidence);
       predicted.push_back(box);
-      truth.push_back(gt);
     }
+    const std::vector<cv::Rect2f>& truth = clip.truth;
     const ev::OtbScores s = ev::otbScores(predicted, truth);
     std::printf("# scores precision20 %.4f auc %.4f\n", s.precision20, s.auc);
     return 0;
