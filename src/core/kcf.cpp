@@ -324,7 +324,8 @@ struct KcfTracker::Impl {
       const float d = std::max(0.0f, xx + zz - 2.0f * cp[i]);
       kp[i] = d * scale;
     }
-    expInPlace(k);  // not cv::exp: its result depends on the CPU (portable_math.h)
+    // cv::exp, whose last bit depends on the CPU's dispatch path (docs/portability.md).
+    cv::exp(k, k);
     forward(k, kf);
   }
 

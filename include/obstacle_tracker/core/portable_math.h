@@ -1,13 +1,14 @@
 // Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
 //
 // Element-wise float operations whose results do not depend on the CPU. OpenCV picks SSE, AVX2 or
-// AVX-512 kernels at run time, and three of the ones the correlation filter used round
-// differently between them: cv::exp (the Gaussian kernel, Henriques et al. 2015 eq. 31),
-// cv::addWeighted (the model's running average, eq. 4.3 of Bolme et al. 2010) and cv::Mat::dot
-// (the features' energy ||z||^2, whose summation order follows the vector width). The loop's decisions (peak
-// thresholds, the best scale) then flip on tiny differences, and the same clip tracked
-// differently on two machines. These loops are written so that the compiler rounds every
-// operation the same way on any machine (ISO C++ mode: no contraction into fused multiply-add).
+// AVX-512 kernels at run time, and some of the ones the correlation filter used round differently
+// between them: cv::addWeighted (the model's running average, eq. 4.3 of Bolme et al. 2010) and
+// cv::Mat::dot (the features' energy ||z||^2, whose summation order follows the vector width).
+// The loop's decisions (peak thresholds, the best scale) then flip on tiny differences, and the
+// same clip tracked differently on two machines. These loops round every operation the same way
+// on any machine (built with -ffp-contract=off). cv::exp (the Gaussian kernel, Henriques et al.
+// 2015 eq. 31) also differs in its last bit between dispatch paths and is kept:
+// docs/portability.md says why.
 #pragma once
 
 #include <cmath>
@@ -16,17 +17,6 @@
 
 namespace obstacle_tracker {
 namespace core {
-
-// m = exp(m), element-wise, CV_32F. In double through the C library, then rounded to float: the
-// float result is the correctly rounded one except in cases far rarer than one in a million.
-inline void expInPlace(cv::Mat& m) {
-  CV_Assert(m.depth() == CV_32F);
-  for (int r = 0; r < m.rows; ++r) {
-    float* p = m.ptr<float>(r);
-    const int n = m.cols * m.channels();
-    for (int i = 0; i < n; ++i) p[i] = static_cast<float>(std::exp(static_cast<double>(p[i])));
-  }
-}
 
 // model = (1 - eta) * model + eta * update, element-wise, CV_32F of any channel count.
 inline void blendInPlace(cv::Mat& model, const cv::Mat& update, float eta) {
