@@ -200,5 +200,30 @@ LongTermScores longTermScores(const std::vector<cv::Rect2f>& predicted,
   return s;
 }
 
+SenseAvoidScores senseAvoidScores(const std::vector<cv::Rect2f>& predicted, const std::vector<float>& confidence,
+                                  const std::vector<cv::Rect2f>& gt, double confident, double correct_px) {
+  if (predicted.size() != gt.size() || confidence.size() != gt.size()) {
+    throw std::invalid_argument("senseAvoidScores: predicted, confidence and gt differ in length");
+  }
+  SenseAvoidScores s;
+  s.frames = static_cast<int>(gt.size());
+  double state_sum = 0.0;
+  for (std::size_t i = 0; i < gt.size(); ++i) {
+    const bool reported = !isAbsent(predicted[i]);
+    const bool present = !isAbsent(gt[i]);
+    const double overlap = iou(predicted[i], gt[i]);  // 0 when either is absent
+    state_sum += present ? overlap : (reported ? 0.0 : 1.0);
+    if (s.first_correct_frame < 0 && present && centreError(predicted[i], gt[i]) <= correct_px) {
+      s.first_correct_frame = static_cast<int>(i);
+    }
+    if (reported && confidence[i] >= confident && overlap <= 0.0) ++s.false_confident_frames;
+  }
+  if (s.frames > 0) {
+    s.state_accuracy = state_sum / s.frames;
+    s.false_confident_rate = static_cast<double>(s.false_confident_frames) / s.frames;
+  }
+  return s;
+}
+
 }  // namespace eval
 }  // namespace obstacle_tracker

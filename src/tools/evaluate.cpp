@@ -161,8 +161,67 @@ struct Cell {  // one (sequence, tracker)
   double ms_p99 = 0.0, ms_max = 0.0;  // per-frame time of the tracker's call
   bool has_lt = false;
   ev::LongTermScores lt;
+  ev::SenseAvoidScores sa;
   std::string error;
 };
+
+// Frames within which a correct first box counts as a start (the auto-initialisation target).
+constexpr int kStartWithinFrames = 30;
+
+// The "Sense and avoid" section of results.md: per sequence and tracker the Anti-UAV state
+// accuracy, the frame of the first correct box and the false confident rate (metrics.h); per
+// subset the means, the worst false confident rate and the clips started within 30 frames.
+void writeSenseAvoid(std::ostream& md, const std::vector<std::string>& seq_names,
+                     const std::vector<std::string>& trackers, const std::vector<std::vector<Cell>>& cells,
+                     const std::vector<std::pair<std::string, std::vector<size_t>>>& subsets) {
+  md << "## Sense and avoid (OPE): state accuracy / first correct frame / false confident rate\n\n"
+        "State accuracy as Anti-UAV (IoU where the target is present, 1 for no box where it is absent); first "
+        "correct frame: the first box within 20 px of the target (- never); false confident rate: frames with a "
+        "box of confidence >= 0.5 and IoU 0 (or no target), over all frames.\n\n| sequence |";
+  for (const auto& t : trackers) md << " " << t << " |";
+  md << "\n|---|";
+  for (size_t t = 0; t < trackers.size(); ++t) md << "---|";
+  md << "\n";
+  for (size_t s = 0; s < seq_names.size(); ++s) {
+    md << "| " << seq_names[s] << " |";
+    for (size_t t = 0; t < trackers.size(); ++t) {
+      const Cell& c = cells[s][t];
+      if (!c.done) {
+        md << " - |";
+        continue;
+      }
+      md << " " << fmt(c.sa.state_accuracy) << " / "
+         << (c.sa.first_correct_frame < 0 ? std::string("-") : std::to_string(c.sa.first_correct_frame)) << " / "
+         << fmt(100.0 * c.sa.false_confident_rate, 1) << " % |";
+    }
+    md << "\n";
+  }
+  for (const auto& sub : subsets) {
+    md << "| **mean: " << sub.first << "** (state acc. / started within " << kStartWithinFrames
+       << " frames / mean, worst false confident) |";
+    for (size_t t = 0; t < trackers.size(); ++t) {
+      double sa = 0.0, fcr = 0.0, worst = 0.0;
+      int n = 0, started = 0;
+      for (size_t s : sub.second) {
+        const Cell& c = cells[s][t];
+        if (!c.done) continue;
+        ++n;
+        sa += c.sa.state_accuracy;
+        fcr += c.sa.false_confident_rate;
+        worst = std::max(worst, c.sa.false_confident_rate);
+        started += (c.sa.first_correct_frame >= 0 && c.sa.first_correct_frame < kStartWithinFrames) ? 1 : 0;
+      }
+      if (n == 0) {
+        md << " - |";
+        continue;
+      }
+      md << " " << fmt(sa / n) << " / " << started << " of " << n << " / " << fmt(100.0 * fcr / n, 1) << " %, "
+         << fmt(100.0 * worst, 1) << " % |";
+    }
+    md << "\n";
+  }
+  md << "\n";
+}
 
 std::string nowUtc() {
   const std::time_t t = std::time(nullptr);
@@ -404,6 +463,7 @@ int main(int argc, char** argv) {
     c.fps = r.fps();
     c.ms_p99 = percentileOf(r.frame_ms, 99.0);
     c.ms_max = percentileOf(r.frame_ms, 100.0);
+    c.sa = ev::senseAvoidScores(r.boxes, r.confidence, r.gt);
     if (seqs[task.seq].absent_frames > 0) {
       c.has_lt = true;
       c.lt = ev::longTermScores(r.boxes, r.confidence, r.gt);
@@ -417,7 +477,9 @@ int main(int argc, char** argv) {
       if (ev::isAbsent(b)) {
         bf << "0,0,0,0," << std::setprecision(4) << r.confidence[f] << "\n";
       } else {
-        bf << std::setprecision(2) << b.x << "," << b.y << "," << b.width << "," << b.height << ","
+        // Four decimals: other tools (scripts/score_bag.py --boxes) must score the same boxes, and
+        // at 0.01 px a rounded box crosses an IoU threshold now and then.
+        bf << std::setprecision(4) << b.x << "," << b.y << "," << b.width << "," << b.height << ","
            << std::setprecision(4) << r.confidence[f] << "\n";
       }
     }
@@ -485,12 +547,14 @@ int main(int argc, char** argv) {
   {
     std::ofstream f(fs::path(out) / "results.csv");
     f << "sequence,tracker,mode,frames,gt_frames,precision20,auc,mean_centre_error,lost_fraction,fps,"
-         "lt_precision,lt_recall,lt_fscore,lt_threshold,frame_ms_p99,frame_ms_max\n";
+         "lt_precision,lt_recall,lt_fscore,lt_threshold,frame_ms_p99,frame_ms_max,state_accuracy,"
+         "first_correct_frame,false_confident_rate\n";
     auto row = [&](const std::string& seq, const std::string& trk, const std::string& mode, int frames,
-                   const ev::OtbScores& sc, double fps, const std::string& lt, const std::string& ms) {
+                   const ev::OtbScores& sc, double fps, const std::string& lt, const std::string& ms,
+                   const std::string& sa = ",,") {
       f << seq << "," << trk << "," << mode << "," << frames << "," << sc.frames << "," << fmt(sc.precision20, 4)
         << "," << fmt(sc.auc, 4) << "," << fmt(sc.mean_centre_error, 2) << "," << fmt(sc.lost_fraction, 4) << ","
-        << fmt(fps, 1) << "," << lt << "," << ms << "\n";
+        << fmt(fps, 1) << "," << lt << "," << ms << "," << sa << "\n";
     };
     for (size_t s = 0; s < S; ++s) {
       for (size_t t = 0; t < T; ++t) {
@@ -500,7 +564,9 @@ int main(int argc, char** argv) {
                                               fmt(c.lt.fscore, 4) + "," + fmt(c.lt.threshold, 4)
                                         : ",,,";
         row(seqs[s].name, trackers[t], "OPE", seqs[s].frames, c.ope, c.fps, lt,
-            fmt(c.ms_p99, 2) + "," + fmt(c.ms_max, 2));
+            fmt(c.ms_p99, 2) + "," + fmt(c.ms_max, 2),
+            fmt(c.sa.state_accuracy, 4) + "," + std::to_string(c.sa.first_correct_frame) + "," +
+                fmt(c.sa.false_confident_rate, 4));
         if (c.has_tre) {
           const double fps = tre_secs[s][t] > 0 ? tre_frames[s][t] / tre_secs[s][t] : 0.0;
           row(seqs[s].name, trackers[t], "TRE", seqs[s].frames, c.tre, fps, ",,,", ",");
@@ -616,6 +682,13 @@ int main(int argc, char** argv) {
       md << "\n";
     }
     md << "\n";
+    {
+      std::vector<std::string> names;
+      for (const auto& q : seqs) names.push_back(q.name);
+      std::vector<std::pair<std::string, std::vector<size_t>>> subs;
+      for (const auto& sub : subsets) subs.emplace_back(sub.name, sub.seqs);
+      writeSenseAvoid(md, names, trackers, cells, subs);
+    }
     bool any_lt = false;
     for (const auto& s : seqs) any_lt = any_lt || s.absent_frames > 0;
     if (any_lt) {

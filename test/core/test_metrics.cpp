@@ -204,3 +204,37 @@ TEST(Metrics, LongTermThresholdCap) {
   EXPECT_FLOAT_EQ(s.thresholds.back(), 499 / 500.0f);
   EXPECT_DOUBLE_EQ(s.fscore, 1.0);  // tau = 0 keeps every (perfect) report
 }
+
+TEST(Metrics, SenseAvoidKnownAnswer) {
+  const cv::Rect2f none;
+  const cv::Rect2f t(100, 100, 10, 10);
+  // Frames: 0 no box (target present), 1 a far confident box (false confident), 2 the target
+  // half-overlapped (IoU 1/3, centre 5 px off: the first correct start), 3 exact, 4 target absent
+  // and no box (state 1), 5 target absent and a confident box (state 0, false confident).
+  const std::vector<cv::Rect2f> gt = {t, t, t, t, none, none};
+  const std::vector<cv::Rect2f> pred = {none, cv::Rect2f(300, 300, 10, 10), cv::Rect2f(105, 100, 10, 10), t, none,
+                                        cv::Rect2f(5, 5, 10, 10)};
+  const std::vector<float> conf = {0.0f, 0.9f, 0.6f, 1.0f, 0.0f, 0.7f};
+  const ev::SenseAvoidScores s = ev::senseAvoidScores(pred, conf, gt);
+  EXPECT_EQ(s.frames, 6);
+  EXPECT_NEAR(s.state_accuracy, (0.0 + 0.0 + 50.0 / 150.0 + 1.0 + 1.0 + 0.0) / 6.0, 1e-9);
+  EXPECT_EQ(s.first_correct_frame, 2);
+  EXPECT_EQ(s.false_confident_frames, 2);
+  EXPECT_NEAR(s.false_confident_rate, 2.0 / 6.0, 1e-12);
+  // A box without confidence is not a confident one; a threshold above every confidence: none.
+  EXPECT_EQ(ev::senseAvoidScores(pred, std::vector<float>(6, 0.49f), gt).false_confident_frames, 0);
+  EXPECT_EQ(ev::senseAvoidScores(pred, conf, gt, 0.95).false_confident_frames, 0);
+}
+
+TEST(Metrics, SenseAvoidNeverCorrectAndSizes) {
+  const std::vector<cv::Rect2f> gt(3, cv::Rect2f(0, 0, 10, 10));
+  const std::vector<cv::Rect2f> far(3, cv::Rect2f(100, 100, 10, 10));
+  const ev::SenseAvoidScores s = ev::senseAvoidScores(far, std::vector<float>(3, 0.2f), gt);
+  EXPECT_EQ(s.first_correct_frame, -1);
+  EXPECT_DOUBLE_EQ(s.state_accuracy, 0.0);
+  EXPECT_EQ(s.false_confident_frames, 0);
+  EXPECT_THROW(ev::senseAvoidScores(far, std::vector<float>(2, 0.0f), gt), std::invalid_argument);
+  const ev::SenseAvoidScores empty = ev::senseAvoidScores({}, {}, {});
+  EXPECT_EQ(empty.frames, 0);
+  EXPECT_DOUBLE_EQ(empty.false_confident_rate, 0.0);
+}

@@ -14,6 +14,12 @@
 //   absent there); tracking recall Re(tau) = mean IoU over the frames where the target is present
 //   (IoU 0 when the tracker reports nothing >= tau); F(tau) = 2 Pr Re / (Pr + Re); the score is
 //   the F at the tau that maximises it (with that tau's Pr and Re).
+// - Sense and avoid: the Anti-UAV state accuracy (Jiang et al., "Anti-UAV: a large multi-modal
+//   benchmark for UAV tracking", 2021: per frame the IoU where the target is present, 0 there for
+//   no box; where it is absent 1 for no box and 0 for a box; mean over frames), the first frame
+//   whose box is within 20 px of the target (a correct start), and the false confident rate:
+//   frames whose box has confidence >= 0.5 and IoU 0 with the target (or the target is absent),
+//   over all frames -- the output a planner acting on confidence >= 0.5 must never get.
 // No ROS, no I/O: pure functions of boxes.
 #pragma once
 
@@ -87,6 +93,20 @@ struct LongTermScores {
 LongTermScores longTermScores(const std::vector<cv::Rect2f>& predicted,
                               const std::vector<float>& confidence,
                               const std::vector<cv::Rect2f>& gt, int max_thresholds = 100);
+
+struct SenseAvoidScores {
+  int frames = 0;
+  double state_accuracy = 0.0;
+  int first_correct_frame = -1;    // -1: never within correct_px
+  int false_confident_frames = 0;
+  double false_confident_rate = 0.0;
+};
+
+// predicted[i] with confidence[i] against gt[i]; an absent predicted box (isAbsent) is "no box".
+// Sizes must match (std::invalid_argument otherwise).
+SenseAvoidScores senseAvoidScores(const std::vector<cv::Rect2f>& predicted, const std::vector<float>& confidence,
+                                  const std::vector<cv::Rect2f>& gt, double confident = 0.5,
+                                  double correct_px = kPrecisionSummaryPx);
 
 }  // namespace eval
 }  // namespace obstacle_tracker
