@@ -16,5 +16,8 @@ CORES=$(nproc)
 stress-ng --cpu "$CORES" --timeout 1800 --quiet &
 STRESS=$!
 trap 'kill "$STRESS" 2>/dev/null || true; wait "$STRESS" 2>/dev/null || true' EXIT
+sleep 1
+kill -0 "$STRESS" 2>/dev/null || { echo "15-rostests-loaded: stress-ng did not start"; exit 1; }
 echo "== rostests with stress-ng --cpu $CORES beside them"
-ctest --test-dir "$BUILD" -R "_rostest_" -j2 --output-on-failure --timeout 900
+ctest --test-dir "$BUILD" -R "_rostest_" -j2 --output-on-failure --timeout 900 --no-tests=error
+kill -0 "$STRESS" 2>/dev/null || { echo "15-rostests-loaded: stress-ng ended before the tests did"; exit 1; }

@@ -26,7 +26,8 @@ if [ ${#missing[@]} -gt 0 ]; then
   echo "== 50-arm64: installing ${missing[*]}"
   if ! dpkg --print-foreign-architectures | grep -qx arm64; then $SUDO dpkg --add-architecture arm64; fi
   $SUDO apt-get update -q
-  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -q --no-install-recommends "${missing[@]}"
+  # --no-remove: never trade the amd64 OpenCV for an arm64 package that conflicts with it.
+  $SUDO env DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends --no-remove "${missing[@]}"
 fi
 
 echo "== 50-arm64: cross-build ($ARM)"
@@ -34,7 +35,8 @@ cmake -S . -B "$ARM" -DCMAKE_TOOLCHAIN_FILE=cmake/aarch64-linux-gnu.cmake -DOT_C
   -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$ARM" -j"$JOBS"
 cmake --build "$ARM" -j"$JOBS" --target tests
-file "$ARM/scene_boxes" | grep -q "ARM aarch64" || { echo "50-arm64: $ARM/scene_boxes is not an arm64 program"; exit 1; }
+aarch64-linux-gnu-readelf -h "$ARM/scene_boxes" | grep -q "AArch64" \
+  || { echo "50-arm64: $ARM/scene_boxes is not an arm64 program"; exit 1; }
 
 echo "== 50-arm64: the core's tests under qemu-aarch64"
 ctest --test-dir "$ARM" -j"$JOBS" --output-on-failure --timeout 1200

@@ -792,23 +792,31 @@ void Pipeline::prepare(cv::Size size, int type) {
   if (size.width < kWarmupMinSide || size.height < kWarmupMinSide) return;  // nothing worth warming
   const WarmupClip clip = makeWarmupClip(size, type);
   const int next_id = impl_->next_id;
-  impl_->resetAll();
-  // Searching first (whole-frame saliency, auto-initialisation over a frame pair), then a filter
-  // started on the box and tracking.
-  process(clip.frames[0], 0.0);
-  process(clip.frames[1], 1.0 / 30.0);
-  impl_->resetAll();
-  for (std::size_t i = 0; i < clip.frames.size(); ++i) {
-    const double stamp = static_cast<double>(i) / 30.0;
-    if (i == 0) {
-      startTrack(clip.frames[0], stamp, clip.box);
-    } else {
-      process(clip.frames[i], stamp);
+  auto forget = [&] {  // as if never prepared: no track, the same next id, no frame size
+    impl_->resetAll();
+    impl_->next_id = next_id;
+    impl_->frame_size = cv::Size();
+  };
+  try {
+    impl_->resetAll();
+    // Searching first (whole-frame saliency, auto-initialisation over a frame pair), then a
+    // filter started on the box and tracking.
+    process(clip.frames[0], 0.0);
+    process(clip.frames[1], 1.0 / 30.0);
+    impl_->resetAll();
+    for (std::size_t i = 0; i < clip.frames.size(); ++i) {
+      const double stamp = static_cast<double>(i) / 30.0;
+      if (i == 0) {
+        startTrack(clip.frames[0], stamp, clip.box);
+      } else {
+        process(clip.frames[i], stamp);
+      }
     }
+  } catch (...) {
+    forget();
+    throw;
   }
-  impl_->resetAll();
-  impl_->next_id = next_id;
-  impl_->frame_size = cv::Size();
+  forget();
 }
 
 TrackState Pipeline::state() const {

@@ -213,6 +213,7 @@ SenseAvoidScores senseAvoidScores(const std::vector<cv::Rect2f>& predicted, cons
     const bool present = !isAbsent(gt[i]);
     const double overlap = iou(predicted[i], gt[i]);  // 0 when either is absent
     state_sum += present ? overlap : (reported ? 0.0 : 1.0);
+    if (s.first_present_frame < 0 && present) s.first_present_frame = static_cast<int>(i);
     if (s.first_correct_frame < 0 && present && centreError(predicted[i], gt[i]) <= correct_px) {
       s.first_correct_frame = static_cast<int>(i);
     }

@@ -231,7 +231,8 @@ void ObstacleTrackerNodelet::processFrames() {
 
 void ObstacleTrackerNodelet::prepareFor(const cv::Mat& frame) {
   // The first frame of a size would otherwise make the pipeline's buffers and OpenCV's lazy
-  // tables (several times a steady frame's time); a new size or type starts new tracks anyway.
+  // tables (several times a steady frame's time). A new size starts new tracks anyway; a new
+  // type (grey <-> colour) does so here too.
   const auto t0 = std::chrono::steady_clock::now();
   prepared_size_ = frame.size();  // once per size and type, even when it fails
   prepared_type_ = frame.type();

@@ -209,7 +209,9 @@ void writeSenseAvoid(std::ostream& md, const std::vector<std::string>& seq_names
         sa += c.sa.state_accuracy;
         fcr += c.sa.false_confident_rate;
         worst = std::max(worst, c.sa.false_confident_rate);
-        started += (c.sa.first_correct_frame >= 0 && c.sa.first_correct_frame < kStartWithinFrames) ? 1 : 0;
+        // Counted from the target's first frame in view (it may enter late).
+        started += (c.sa.first_correct_frame >= 0 &&
+                    c.sa.first_correct_frame - c.sa.first_present_frame < kStartWithinFrames) ? 1 : 0;
       }
       if (n == 0) {
         md << " - |";

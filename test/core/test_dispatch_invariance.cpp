@@ -17,37 +17,20 @@
 
 #include "obstacle_tracker/core/pipeline.h"
 #include "obstacle_tracker/eval/metrics.h"
-#include "obstacle_tracker/scene/scene_generator.h"
+#include "rendered_clip.h"
 
 namespace oc = obstacle_tracker::core;
-namespace os = obstacle_tracker::scene;
 namespace ev = obstacle_tracker::eval;
 
 namespace {
 
 constexpr double kTolerance = 0.02;
 
-struct Clip {
-  std::vector<cv::Mat> frames;
-  std::vector<cv::Rect2f> truth;
-  double fps = 30.0;
-};
+using Clip = obstacle_tracker::test::RenderedClip;
 
 // Rendered once, before either run: the scene generator's own OpenCV calls are not under test.
 Clip render(const std::string& scenario, int frames, bool grey) {
-  os::SceneGenerator gen = os::makeScenario(scenario, 3, frames, cv::Size(480, 360));
-  Clip c;
-  c.fps = gen.fps();
-  for (int i = 0; i < frames; ++i) {
-    cv::Mat frame;
-    os::FrameTruth truth;
-    gen.renderFrame(i, frame, &truth);
-    if (grey) cv::cvtColor(frame, frame, cv::COLOR_BGR2GRAY);
-    const os::ObstacleTruth* main = truth.find(1);
-    c.truth.push_back(main != nullptr && main->visible ? main->box : cv::Rect2f());
-    c.frames.push_back(frame);
-  }
-  return c;
+  return obstacle_tracker::test::renderClip(scenario, 3, frames, cv::Size(480, 360), grey);
 }
 
 std::vector<cv::Rect2f> track(const Clip& c, bool from_box) {

@@ -218,6 +218,7 @@ TEST(Metrics, SenseAvoidKnownAnswer) {
   const ev::SenseAvoidScores s = ev::senseAvoidScores(pred, conf, gt);
   EXPECT_EQ(s.frames, 6);
   EXPECT_NEAR(s.state_accuracy, (0.0 + 0.0 + 50.0 / 150.0 + 1.0 + 1.0 + 0.0) / 6.0, 1e-9);
+  EXPECT_EQ(s.first_present_frame, 0);
   EXPECT_EQ(s.first_correct_frame, 2);
   EXPECT_EQ(s.false_confident_frames, 2);
   EXPECT_NEAR(s.false_confident_rate, 2.0 / 6.0, 1e-12);
@@ -234,6 +235,9 @@ TEST(Metrics, SenseAvoidNeverCorrectAndSizes) {
   EXPECT_DOUBLE_EQ(s.state_accuracy, 0.0);
   EXPECT_EQ(s.false_confident_frames, 0);
   EXPECT_THROW(ev::senseAvoidScores(far, std::vector<float>(2, 0.0f), gt), std::invalid_argument);
+  // A target that enters late: its first frame in view is reported.
+  const std::vector<cv::Rect2f> late = {cv::Rect2f(), cv::Rect2f(), cv::Rect2f(0, 0, 10, 10)};
+  EXPECT_EQ(ev::senseAvoidScores(late, std::vector<float>(3, 1.0f), late).first_present_frame, 2);
   const ev::SenseAvoidScores empty = ev::senseAvoidScores({}, {}, {});
   EXPECT_EQ(empty.frames, 0);
   EXPECT_DOUBLE_EQ(empty.false_confident_rate, 0.0);

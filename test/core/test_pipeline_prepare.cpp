@@ -12,32 +12,16 @@
 
 #include "obstacle_tracker/core/pipeline.h"
 #include "obstacle_tracker/core/warmup.h"
-#include "obstacle_tracker/scene/scene_generator.h"
+#include "rendered_clip.h"
 
 namespace oc = obstacle_tracker::core;
-namespace os = obstacle_tracker::scene;
 
 namespace {
 
-struct Clip {
-  std::vector<cv::Mat> frames;
-  cv::Rect2f first_box;
-  double fps = 30.0;
-};
+using Clip = obstacle_tracker::test::RenderedClip;
 
 Clip render(const std::string& scenario, cv::Size size, bool grey, int frames) {
-  os::SceneGenerator gen = os::makeScenario(scenario, 2, frames, size);
-  Clip c;
-  c.fps = gen.fps();
-  for (int i = 0; i < frames; ++i) {
-    cv::Mat frame;
-    os::FrameTruth truth;
-    gen.renderFrame(i, frame, &truth);
-    if (grey && frame.channels() == 3) cv::cvtColor(frame, frame, cv::COLOR_BGR2GRAY);
-    if (i == 0 && truth.find(1) != nullptr) c.first_box = truth.find(1)->box;
-    c.frames.push_back(frame);
-  }
-  return c;
+  return obstacle_tracker::test::renderClip(scenario, 2, frames, size, grey);
 }
 
 // Every output of every frame, as text with full float precision (a readable diff on failure).
@@ -47,7 +31,7 @@ std::vector<std::string> run(const Clip& c, bool from_box, const cv::Size* prepa
   std::vector<std::string> log;
   for (std::size_t i = 0; i < c.frames.size(); ++i) {
     const double stamp = static_cast<double>(i) / c.fps;
-    const auto& out = (i == 0 && from_box) ? pipeline.startTrack(c.frames[i], stamp, c.first_box)
+    const auto& out = (i == 0 && from_box) ? pipeline.startTrack(c.frames[i], stamp, c.truth[0])
                                            : pipeline.process(c.frames[i], stamp);
     std::string line = std::to_string(i) + ":";
     char buf[256];
@@ -89,9 +73,9 @@ TEST(PipelinePrepare, BoxStartedGreyClipUnchanged) {
 TEST(PipelinePrepare, IdsContinueAfterAPrepareMidRun) {
   const Clip c = render("crossing", cv::Size(320, 240), false, 10);
   oc::Pipeline pipeline;
-  const int first_id = pipeline.startTrack(c.frames[0], 0.0, c.first_box).at(0).id;
+  const int first_id = pipeline.startTrack(c.frames[0], 0.0, c.truth[0]).at(0).id;
   pipeline.prepare(cv::Size(320, 240), CV_8UC3);  // forgets the track, not the id counter
-  const int second_id = pipeline.startTrack(c.frames[1], 1.0, c.first_box).at(0).id;
+  const int second_id = pipeline.startTrack(c.frames[1], 1.0, c.truth[0]).at(0).id;
   EXPECT_EQ(second_id, first_id + 1);
 }
 

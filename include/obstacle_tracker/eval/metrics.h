@@ -97,6 +97,7 @@ LongTermScores longTermScores(const std::vector<cv::Rect2f>& predicted,
 struct SenseAvoidScores {
   int frames = 0;
   double state_accuracy = 0.0;
+  int first_present_frame = -1;    // the target's first frame in view; -1: never
   int first_correct_frame = -1;    // -1: never within correct_px
   int false_confident_frames = 0;
   double false_confident_rate = 0.0;

@@ -23,9 +23,10 @@ namespace bridge {
 template <typename Frame>
 class FrameSlot {
  public:
-  // Frames kept while the processing thread is idle but not yet awake: the two of a burst; few
-  // enough that a stalled thread cannot pile up old frames (each a full image in memory).
-  static constexpr std::size_t kIdleBacklog = 2;
+  // Frames kept while the processing thread is idle but not yet awake: a burst, or 20 ms of a
+  // 200 Hz camera while a loaded machine has not yet scheduled the thread; few enough that a
+  // stalled thread cannot pile up old frames (each a full image in memory).
+  static constexpr std::size_t kIdleBacklog = 4;
 
   // Called by the subscription callbacks (any thread). Never blocks on processing.
   void offer(Frame frame) {

@@ -167,12 +167,14 @@ class AccuracyTest : public ::testing::Test {
   }
 
   // The first frame is sent again until it is answered: a subscription can be announced before
-  // its connection carries data. The nodelet answers a repeated frame (same stamp and seq) once.
+  // its connection carries data. Each sending is a new message to the nodelet (roscpp gives it a
+  // new seq), so a frame sent k times may be answered up to k times (first_sends_).
   bool sendFirst() {
     const double end = steadyNow() + answer_timeout_;
     while (ros::ok() && steadyNow() < end) {
       send(0);
-      if (waitAnswer(0, 1.0)) return true;
+      ++first_sends_;
+      if (waitAnswer(0, 5.0)) return true;
     }
     return false;
   }
@@ -211,6 +213,7 @@ class AccuracyTest : public ::testing::Test {
   std::vector<Answer> answers_;
   std::vector<double> sent_;
   int unknown_ = 0;
+  int first_sends_ = 0;
 };
 
 TEST_F(AccuracyTest, ReplayThroughTheNodelet) {
@@ -250,7 +253,8 @@ TEST_F(AccuracyTest, ReplayThroughTheNodelet) {
   int wrong_frame_id = 0;
   for (size_t i = 0; i < frames_.size(); ++i) {
     const Answer& a = answers_[i];
-    records[i] = {sent_[i], a.arrival, a.count};
+    // The first frame: one answer per sending is allowed (sendFirst).
+    records[i] = {sent_[i], a.arrival, i == 0 && a.count <= first_sends_ ? std::min(a.count, 1) : a.count};
     if (a.count == 0) continue;
     if (!a.same_frame_id) ++wrong_frame_id;
     predicted.push_back(a.box);
@@ -283,7 +287,9 @@ TEST_F(AccuracyTest, ReplayThroughTheNodelet) {
   EXPECT_EQ(delivery.dropped_while_idle, 0)
       << "frames dropped with no earlier frame in processing (first 20):" << delivery.idle_drops;
   EXPECT_TRUE(delivery.last_answered) << "the last frame sent was not answered";
-  if (pace_ == "lockstep") EXPECT_EQ(delivery.dropped, 0) << "a lock-step replay answers every frame";
+  if (pace_ == "lockstep") {
+    EXPECT_EQ(delivery.dropped, 0) << "a lock-step replay answers every frame";
+  }
   EXPECT_GE(otb.precision20, min_precision20_);
   EXPECT_GE(otb.auc, min_auc_);
 }

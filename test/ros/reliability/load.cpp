@@ -44,10 +44,10 @@ namespace {
 constexpr int kPublisherQueue = 16;
 // Earlier frames that can still be answered after the last one was sent without any backlog in
 // the nodelet: everything that the path's fixed-size queues hold (our publisher's, the nodelet's
-// subscription queue of 2, the FrameSlot's idle backlog of 2, the frame in processing) and a few
+// subscription queue of 2, the FrameSlot's idle backlog of 4, the frame in processing) and a few
 // 2.7 MB frames in the loopback socket. A nodelet that queued instead of dropping would answer
 // the whole backlog: hundreds of frames after a minute at 200 Hz.
-constexpr int kNodeletHeldFrames = 2 + 2 + 1;  // subscription queue, FrameSlot backlog, processing
+constexpr int kNodeletHeldFrames = 2 + 4 + 1;  // subscription queue, FrameSlot backlog, processing
 constexpr int kMaxAnsweredAfterEnd = kPublisherQueue + kNodeletHeldFrames + 3;
 
 struct Sample {
