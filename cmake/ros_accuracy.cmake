@@ -31,7 +31,9 @@ set(OT_ACCURACY_REAL_BARS min_precision20:=0.7 min_auc:=0.35)
 
 set(OT_ACCURACY_PYTHONPATH ${CATKIN_DEVEL_PREFIX}/${CATKIN_GLOBAL_PYTHON_DESTINATION})
 set(OT_TO_BAG ${PROJECT_SOURCE_DIR}/scripts/sequence_to_bag.py)
+# The bags hold ObstacleArray ground truth: a changed message definition must remake them.
 set(OT_TO_BAG_DEPS ${OT_TO_BAG} ${PROJECT_SOURCE_DIR}/scripts/otb_metrics.py
+  ${PROJECT_SOURCE_DIR}/msg/Obstacle.msg ${PROJECT_SOURCE_DIR}/msg/ObstacleArray.msg
   ${PROJECT_NAME}_generate_messages_py)
 
 # One bag per size: the accuracy size (sent lock-step), and 1280x720 sent at its 30 Hz like a

@@ -723,6 +723,8 @@ struct Pipeline::Impl {
       o.id = t->id;
       o.box = t->box;
       o.confidence = std::min(1.0f, std::max(0.0f, t->result.confidence));
+      o.confirmed = t->verified;
+      if (!o.confirmed) o.confidence = std::min(o.confidence, kUnconfirmedConfidenceCap);
       o.peak = t->result.peak;
       o.psr = t->result.psr;
       o.state = t->state;

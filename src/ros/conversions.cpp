@@ -123,6 +123,7 @@ void toMessage(const core::Obstacle& o, obstacle_tracker::Obstacle& msg) {
   msg.peak = o.peak;
   msg.psr = o.psr;
   msg.state = toMessageState(o.state);
+  msg.confirmed = o.confirmed;
   msg.has_bearing = false;
   msg.bearing.x = msg.bearing.y = msg.bearing.z = 0.0;
   msg.angular_width = 0.0f;

@@ -49,7 +49,8 @@ void drawOverlay(const cv::Mat& frame, const std::vector<core::Obstacle>& obstac
                        std::max(1, cvRound(o.box.height)));
     cv::rectangle(out, box, colour, thickness, cv::LINE_8);
     char label[96];
-    std::snprintf(label, sizeof(label), "#%d %.2f %s", o.id, o.confidence, shortState(o.state));
+    std::snprintf(label, sizeof(label), "#%d %.2f %s%s", o.id, o.confidence, shortState(o.state),
+                  o.confirmed ? "" : " unconfirmed");
     int baseline = 0;
     const cv::Size text = cv::getTextSize(label, font, font_scale, 1, &baseline);
     cv::Point origin(box.x, box.y - thickness - 2);

@@ -146,6 +146,23 @@ TEST(PipelineScenes, UnverifiedStartGivesWayToAMover) {
   }
   EXPECT_GE(first_id, 0);
   EXPECT_NE(first_id, last_id);
+  // The overlay-started track is never reported as confirmed, nor with confidence >= 0.5; the
+  // mover that replaced it is confirmed (it replaced it by verifying first).
+  int first_reports = 0, last_confirmed = 0, last_reports = 0;
+  for (const auto& f : with.frames) {
+    for (const auto& o : f) {
+      if (o.id == first_id) {
+        ++first_reports;
+        EXPECT_FALSE(o.confirmed);
+        EXPECT_LT(o.confidence, 0.5f);
+      } else if (o.id == last_id) {
+        ++last_reports;
+        last_confirmed += o.confirmed ? 1 : 0;
+      }
+    }
+  }
+  EXPECT_GT(first_reports, 0);
+  EXPECT_EQ(last_confirmed, last_reports);
   // ... and the track that replaced it is on the multirotor (not the mast found again).
   int reported = 0, on_target = 0;
   for (std::size_t i = 0; i < with.frames.size(); ++i) {

@@ -21,6 +21,9 @@ enum class TrackState : std::uint8_t {
 const char* toString(TrackState state);
 
 // One obstacle as the pipeline reports it for one frame.
+// Highest confidence an unconfirmed obstacle is reported with (Obstacle::confirmed).
+constexpr float kUnconfirmedConfidenceCap = 0.49f;
+
 struct Obstacle {
   int id = -1;                    // stable for the life of a track
   cv::Rect2f box;                 // pixels, top-left corner and size, in the input frame
@@ -32,6 +35,10 @@ struct Obstacle {
   double time_to_contact = std::numeric_limits<double>::infinity();  // s; +inf when not closing
   int age = 0;                    // frames since the track started
   bool model_updated = false;     // the filter learned from this frame (false under occlusion)
+  // False while an auto-started track has not shown itself an obstacle (moved against the
+  // background, or grown); its confidence is then below kUnconfirmedConfidenceCap, so that a
+  // planner acting on confidence >= 0.5 never acts on an on-screen overlay or a mast.
+  bool confirmed = true;
 };
 
 }  // namespace core

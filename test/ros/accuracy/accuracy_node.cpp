@@ -25,6 +25,7 @@
 #include <cstdio>
 #include <map>
 #include <mutex>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
@@ -64,7 +65,9 @@ struct BagFrame {
   cv::Rect2f truth;                        // empty: target absent
 };
 
-// The bag's frames in stamp order, each with its ground truth and camera_info.
+// The bag's frames in stamp order, each with its ground truth and camera_info. Throws when a
+// ground-truth message does not match this build's ObstacleArray (a bag made before the message
+// changed): the scores would silently be those of an absent target.
 std::vector<BagFrame> readBag(const std::string& path, const std::string& image_topic,
                               const std::string& info_topic, const std::string& gt_topic) {
   std::map<uint64_t, BagFrame> by_stamp;
@@ -79,7 +82,11 @@ std::vector<BagFrame> readBag(const std::string& path, const std::string& image_
       if (msg) by_stamp[msg->header.stamp.toNSec()].info = msg;
     } else {
       auto msg = m.instantiate<obstacle_tracker::ObstacleArray>();
-      if (msg && !msg->obstacles.empty()) {
+      if (!msg) {
+        throw std::runtime_error(gt_topic + " in " + path + " is not this build's ObstacleArray (" +
+                                 m.getDataType() + ", md5 " + m.getMD5Sum() + "): remake the bag");
+      }
+      if (!msg->obstacles.empty()) {
         const auto& b = msg->obstacles.front();
         by_stamp[msg->header.stamp.toNSec()].truth = cv::Rect2f(b.x, b.y, b.width, b.height);
       }
@@ -224,7 +231,11 @@ TEST_F(AccuracyTest, ReplayThroughTheNodelet) {
   }
   ASSERT_TRUE(pace_ == "lockstep" || pace_ == "realtime") << "~pace must be lockstep or realtime, not " << pace_;
   ASSERT_GT(play_rate_, 0.0);
-  frames_ = readBag(bag_, image_topic_, info_topic_, gt_topic_);
+  try {
+    frames_ = readBag(bag_, image_topic_, info_topic_, gt_topic_);
+  } catch (const std::exception& e) {
+    FAIL() << e.what();
+  }
   ASSERT_GE(frames_.size(), 10u) << "too few images in " << bag_;
   for (size_t i = 0; i < frames_.size(); ++i) index_[frames_[i].image->header.stamp.toNSec()] = i;
   answers_.assign(frames_.size(), Answer());
