@@ -10,6 +10,9 @@
 //     was sent. Sent-before-received and published-before-received make the test causal: with
 //     s_i the time frame i was published and o_j the time the answer to j reached the test (one
 //     clock, one process), a dropped frame i needs an answered j < i with o_j > s_i;
+//   - or, on a machine that did not schedule the tracker for a while, the frame was the oldest of
+//     a full backlog: the nodelet holds at most `backlog` waiting frames (its subscription queue
+//     and FrameSlot), so at least that many newer frames were sent before the next answer;
 //   - the newest frame is never dropped: the last frame sent (nothing came after it to replace
 //     it) is answered.
 #pragma once
@@ -33,7 +36,9 @@ struct DeliveryReport {
   int answered = 0;
   int doubled = 0;              // frames answered more than once
   int dropped = 0;              // sent frames with no answer
-  int dropped_while_idle = 0;   // of those, frames no earlier answer was pending for
+  int dropped_while_idle = 0;   // of those, frames no earlier answer was pending for and no full
+                                // backlog pushed out
+  int dropped_by_backlog = 0;   // frames pushed out of a full backlog while the tracker waited
   int out_of_order = 0;         // answers that arrived before the answer of an earlier frame
   bool last_answered = false;   // the last frame sent has an answer
   std::string idle_drops;       // indices of the first dropped-while-idle frames
@@ -44,7 +49,8 @@ struct DeliveryReport {
   }
 };
 
-inline DeliveryReport checkDelivery(const std::vector<FrameRecord>& frames) {
+// backlog: frames the nodelet can hold waiting (0: none, every idle drop is a violation).
+inline DeliveryReport checkDelivery(const std::vector<FrameRecord>& frames, int backlog = 0) {
   DeliveryReport r;
   double latest_answer = -INFINITY;  // max o_j over the answered frames before the current one
   int last_sent = -1;
@@ -61,8 +67,23 @@ inline DeliveryReport checkDelivery(const std::vector<FrameRecord>& frames) {
       continue;
     }
     ++r.dropped;
-    if (!(latest_answer > f.sent)) {
-      if (++r.dropped_while_idle <= 20) r.idle_drops += " " + std::to_string(i);
+    if (latest_answer > f.sent) continue;  // dropped while an earlier frame was in processing
+    // The next answer after this frame, and how many newer frames were sent before it.
+    double next_answer = INFINITY;
+    for (std::size_t k = i + 1; k < frames.size(); ++k) {
+      if (frames[k].answers > 0) {
+        next_answer = frames[k].answered;
+        break;
+      }
+    }
+    int newer = 0;
+    for (std::size_t k = i + 1; k < frames.size() && newer < backlog; ++k) {
+      if (frames[k].sent < next_answer) ++newer;
+    }
+    if (backlog > 0 && newer >= backlog) {
+      ++r.dropped_by_backlog;
+    } else if (++r.dropped_while_idle <= 20) {
+      r.idle_drops += " " + std::to_string(i);
     }
   }
   r.last_answered = last_sent >= 0 && frames[static_cast<std::size_t>(last_sent)].answers > 0;

@@ -109,6 +109,21 @@ TEST(FrameDelivery, DropWhileBusyIsAllowedDropWhileIdleIsNot) {
   EXPECT_EQ(r.idle_drops, " 1");
 }
 
+TEST(FrameDelivery, AFullBacklogMayPushOutTheOldest) {
+  // The tracker answered frame 0 at 0.5, then was not scheduled: frames 1..4 were sent before its
+  // next answer (frame 2 at 4.5). With a backlog of 3, frame 1 was pushed out by 3 newer frames.
+  std::vector<rt::FrameRecord> frames = {{0.0, 0.5, 1}, {1.0, NAN, 0}, {2.0, 4.5, 1}, {3.0, 5.5, 1}, {4.0, 6.5, 1}};
+  rt::DeliveryReport r = rt::checkDelivery(frames, 3);
+  EXPECT_TRUE(r.kept());
+  EXPECT_EQ(r.dropped_by_backlog, 1);
+  // With room for 4 it should not have been dropped; strict (0) never excuses an idle drop.
+  EXPECT_EQ(rt::checkDelivery(frames, 4).dropped_while_idle, 1);
+  EXPECT_EQ(rt::checkDelivery(frames, 0).dropped_while_idle, 1);
+  // The old bug: two frames arriving together while idle, the first dropped; one newer frame only.
+  frames = {{0.0, 0.5, 1}, {1.0, NAN, 0}, {1.0, 1.5, 1}};
+  EXPECT_EQ(rt::checkDelivery(frames, 6).dropped_while_idle, 1);
+}
+
 TEST(FrameDelivery, DoubledOutOfOrderAndLastFrameAreCaught) {
   std::vector<rt::FrameRecord> frames = {{0.0, 0.5, 2}, {1.0, 1.5, 1}};
   EXPECT_EQ(rt::checkDelivery(frames).doubled, 1);
