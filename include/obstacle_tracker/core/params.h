@@ -16,7 +16,7 @@ namespace core {
 // type is bool, int or double. min/max are inclusive; a value outside is clamped with a message,
 // a NaN is refused (the old value stays) with a message.
 
-// Closed loop (DESIGN.md "Core contracts").
+// Closed loop.
 #define OT_LOOP_PARAMS(X)                                                                          \
   X(double, peak_threshold, 0.10, 0.0, 1.0, "",                                                    \
     "raw KCF response peak below which the track re-detects (the paper's test)")                  \

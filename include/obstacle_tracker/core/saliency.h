@@ -56,7 +56,7 @@ class SaliencyDetector {
   Impl* impl_;
 };
 
-// Auto-initialisation from several frames (DATA_NOTES.md: one frame's saliency picks the wrong
+// Auto-initialisation from several frames (on the dev clips one frame's saliency picks the wrong
 // object on real footage). Feed every frame while searching; returns the candidates confirmed by
 // the multi-frame cues (full-frame coordinates, best first), empty while nothing is confirmed.
 class AutoInitializer {

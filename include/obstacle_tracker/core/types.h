@@ -9,7 +9,7 @@
 namespace obstacle_tracker {
 namespace core {
 
-// Life of a track (DESIGN.md "Core contracts"). The values match the constants of
+// Life of a track. The values match the constants of
 // msg/Obstacle.msg.
 enum class TrackState : std::uint8_t {
   kSearching = 0,    // no track: whole-frame saliency every detection_interval frames

@@ -4,7 +4,7 @@
 // Trackers: our pipeline ("ours-auto": it finds the target by itself; "ours-gt": started from the
 // first ground-truth box with Pipeline::startTrack) and OpenCV's contrib trackers ("KCF", "CSRT",
 // "MIL", "MOSSE", "MedianFlow"), the latter started from the ground-truth box; when their
-// update() fails they keep the last box (with confidence 0), the convention of ANCHORS.md.
+// update() fails they keep the last box (with confidence 0), the convention the published OpenCV baselines use.
 // Timing covers the tracker's own per-frame call only (decode and colour conversion excluded).
 #pragma once
 

@@ -1,6 +1,6 @@
 // Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
 //
-// Generated flight scenes with exact per-frame ground truth (issue 4; docs/scenes.md).
+// Generated flight scenes with exact per-frame ground truth.
 //
 //   auto gen = obstacle_tracker::scene::makeScenario("approach+jitter+noise", 7, 240, {640, 480});
 //   cv::Mat frame; obstacle_tracker::scene::FrameTruth truth;
