@@ -19,6 +19,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "obstacle_tracker/core/fhog.h"
+#include "obstacle_tracker/core/patch_sampler.h"
 #include "obstacle_tracker/core/portable_math.h"
 
 namespace obstacle_tracker {
@@ -119,9 +120,8 @@ struct KcfTracker::Impl {
 
   // Buffers, made once per template size.
   FhogExtractor fhog;
-  cv::Mat patch, shrunk;   // template-size patch; box-shrunk frame region for large windows
-  std::vector<float> col_a;
-  std::vector<int> col_i0, col_i1, row_acc;
+  cv::Mat patch;           // template-size patch
+  PatchSampler sampler;
   cv::Mat feat;            // (C * rows) x cols, CV_32F, windowed features
   cv::Mat cos_window;      // rows x cols
   cv::Mat yf;              // label spectrum, rows x cols CV_32FC2
@@ -178,112 +178,9 @@ struct KcfTracker::Impl {
 #undef OT_KCF_CLAMP_
   }
 
-  // Frame window (centre c, size ws) -> template patch (tw x th), bilinear, border replication.
-  // When the window is at least twice the template, the covered part of the frame is first
-  // shrunk by an integer box filter (qx x qy pixels per sample) so a large target is not aliased.
-  // Written out (not cv::warpAffine / cv::resize) because those allocate on every call.
+  // Frame window (centre c, size ws) -> template patch (tw x th) (patch_sampler.h).
   void extractPatch(const cv::Mat& frame, cv::Point2f c, cv::Size2f ws) {
-    resample(frame, c, ws, tw, th, patch);
-  }
-
-  // Same into dst (dh x dw), for any destination size up to the template's.
-  void resample(const cv::Mat& frame, cv::Point2f c, cv::Size2f ws, int tw, int th, cv::Mat& dst) {
-    const int nc = frame.channels();
-    dst.create(th, tw, frame.type());
-    const double fx = ws.width / tw;
-    const double fy = ws.height / th;
-    const double x0 = c.x - ws.width * 0.5;
-    const double y0 = c.y - ws.height * 0.5;
-    int qx = std::max(1, static_cast<int>(std::floor(fx)));
-    int qy = std::max(1, static_cast<int>(std::floor(fy)));
-    // Source image and its coordinate map: source pixel j has its centre at frame x = ox + (j +
-    // 0.5) * qx - 0.5.
-    const uchar* src = frame.data;
-    size_t src_step = frame.step;
-    int sw = frame.cols, sh = frame.rows;
-    int ox = 0, oy = 0;
-    if (qx > 1 || qy > 1) {
-      const int rx0 = std::max(0, static_cast<int>(std::floor(x0)) - qx);
-      const int ry0 = std::max(0, static_cast<int>(std::floor(y0)) - qy);
-      const int rx1 = std::min(frame.cols, static_cast<int>(std::ceil(x0 + ws.width)) + qx);
-      const int ry1 = std::min(frame.rows, static_cast<int>(std::ceil(y0 + ws.height)) + qy);
-      const int nw = (rx1 - rx0) / qx;
-      const int nh = (ry1 - ry0) / qy;
-      if (nw >= 1 && nh >= 1) {
-        shrinkBox(frame, rx0, ry0, nw, nh, qx, qy);
-        src = shrunk.data;
-        src_step = shrunk.step;
-        sw = nw;
-        sh = nh;
-        ox = rx0;
-        oy = ry0;
-      } else {
-        qx = qy = 1;
-      }
-    }
-    // Column and row tables: frame x = x0 + (u + 0.5) fx - 0.5 -> source j = (x - ox + 0.5)/qx - 0.5.
-    for (int u = 0; u < tw; ++u) {
-      const double j = (x0 + (u + 0.5) * fx - ox) / qx - 0.5;
-      const double jf = std::floor(j);
-      const int j0 = static_cast<int>(jf);
-      col_a[u] = static_cast<float>(j - jf);
-      col_i0[u] = std::min(std::max(j0, 0), sw - 1) * nc;
-      col_i1[u] = std::min(std::max(j0 + 1, 0), sw - 1) * nc;
-    }
-    for (int v = 0; v < th; ++v) {
-      const double i = (y0 + (v + 0.5) * fy - oy) / qy - 0.5;
-      const double iff = std::floor(i);
-      const int i0 = static_cast<int>(iff);
-      const float b = static_cast<float>(i - iff);
-      const uchar* r0 = src + static_cast<size_t>(std::min(std::max(i0, 0), sh - 1)) * src_step;
-      const uchar* r1 = src + static_cast<size_t>(std::min(std::max(i0 + 1, 0), sh - 1)) * src_step;
-      uchar* out = dst.ptr<uchar>(v);
-      if (nc == 1) {
-        bilinearRow<1>(r0, r1, b, tw, out);
-      } else {
-        bilinearRow<3>(r0, r1, b, tw, out);
-      }
-    }
-  }
-
-  template <int NC>
-  void bilinearRow(const uchar* r0, const uchar* r1, float b, int width, uchar* out) const {
-    for (int u = 0; u < width; ++u) {
-      const float a = col_a[u];
-      const int k0 = col_i0[u], k1 = col_i1[u];
-      for (int ch = 0; ch < NC; ++ch) {
-        const float top = r0[k0 + ch] + a * (static_cast<float>(r0[k1 + ch]) - r0[k0 + ch]);
-        const float bot = r1[k0 + ch] + a * (static_cast<float>(r1[k1 + ch]) - r1[k0 + ch]);
-        out[u * NC + ch] = static_cast<uchar>(top + b * (bot - top) + 0.5f);
-      }
-    }
-  }
-
-  // Mean of qx x qy blocks of frame starting at (rx0, ry0) -> shrunk (nh x nw), reusing buffers.
-  void shrinkBox(const cv::Mat& frame, int rx0, int ry0, int nw, int nh, int qx, int qy) {
-    const int nc = frame.channels();
-    if (shrunk.type() != frame.type() || shrunk.rows < nh || shrunk.cols < nw) {
-      shrunk.create(std::max(nh, shrunk.rows), std::max(nw, shrunk.cols), frame.type());
-    }
-    const int row_len = nw * qx * nc;
-    if (static_cast<int>(row_acc.size()) < row_len) row_acc.resize(row_len);
-    const float inv = 1.0f / static_cast<float>(qx * qy);
-    for (int y = 0; y < nh; ++y) {
-      std::fill(row_acc.begin(), row_acc.begin() + row_len, 0);
-      for (int k = 0; k < qy; ++k) {
-        const uchar* r = frame.ptr<uchar>(ry0 + y * qy + k) + static_cast<size_t>(rx0) * nc;
-        for (int i = 0; i < row_len; ++i) row_acc[i] += r[i];
-      }
-      uchar* out = shrunk.ptr<uchar>(y);
-      for (int x = 0; x < nw; ++x) {
-        for (int ch = 0; ch < nc; ++ch) {
-          int sum = 0;
-          const int* acc = row_acc.data() + x * qx * nc + ch;
-          for (int k = 0; k < qx; ++k) sum += acc[k * nc];
-          out[x * nc + ch] = static_cast<uchar>(static_cast<float>(sum) * inv + 0.5f);
-        }
-      }
-    }
+    sampler.sample(frame, c, ws, tw, th, patch);
   }
 
   // Features of the window -> zf (spectra), returns ||z||^2.
@@ -397,13 +294,7 @@ struct KcfTracker::Impl {
     for (int i = 0; i < count; ++i) {
       scales[i] = static_cast<float>(std::pow(params.scale_step, i - (count - 1) / 2.0));
     }
-    col_a.resize(tw);
-    col_i0.resize(tw);
-    col_i1.resize(tw);
-    // The shrunk region is at most about twice the template (fx / floor(fx) < 2); a row of the
-    // accumulator at most a frame row.
-    shrunk.create(2 * th + 8, 2 * tw + 8, frame.type());
-    if (static_cast<int>(row_acc.size()) < frame.cols * 3) row_acc.resize(frame.cols * 3);
+    sampler.reserve(tw, th, frame.type(), frame.cols);
     resp.resize(count);
     for (auto& r : resp) r.create(rows, cols, CV_32F);
     model_xf.create(kChannels * rows, cols, CV_32FC2);
@@ -513,7 +404,7 @@ struct KcfTracker::Impl {
   void scaleSamples(const cv::Mat& frame, cv::Point2f c, cv::Size2f t) {
     for (int n = 0; n < scale_n; ++n) {
       const float f = dsst_factors[n];
-      resample(frame, c, cv::Size2f(t.width * f, t.height * f), sm_w, sm_h, scale_patch);
+      sampler.sample(frame, c, cv::Size2f(t.width * f, t.height * f), sm_w, sm_h, scale_patch);
       fhog.compute(scale_patch, cell, scale_feat);
       const float* src = scale_feat.ptr<float>();
       const float w = scale_window[n];
@@ -653,12 +544,20 @@ struct KcfTracker::Impl {
     scale_inv_plan = cv::hal::DFT2D::create(scale_n, 1, CV_32F, 2, 1,
                                             cv::DFT_ROWS | cv::DFT_INVERSE | cv::DFT_REAL_OUTPUT |
                                                 cv::DFT_SCALE);
-    if (static_cast<int>(col_a.size()) < sm_w) {
-      col_a.resize(sm_w);
-      col_i0.resize(sm_w);
-      col_i1.resize(sm_w);
-    }
+    sampler.reserve(sm_w, sm_h, frame.type(), frame.cols);
     trainScale(frame, 1.0f);
+  }
+
+  // Scales target and window by f, bounded so that a drifting filter cannot blow the box up or
+  // shrink it to nothing; returns the factor applied.
+  float applyScale(float f) {
+    f = std::min(f, max_target.width / target.width);
+    f = std::min(f, max_target.height / target.height);
+    f = std::max(f, min_target.width / target.width);
+    f = std::max(f, min_target.height / target.height);
+    target = cv::Size2f(target.width * f, target.height * f);
+    window = cv::Size2f(window.width * f, window.height * f);
+    return f;
   }
 
   cv::Rect2f boxAt(cv::Point2f c, cv::Size2f s) const {
@@ -756,13 +655,7 @@ KcfResult trackStep(KcfTracker::Impl& m, const cv::Mat& frame, bool allow_learni
 
   // Scale, bounded so a drifting filter cannot blow the box up or shrink it to nothing, and kept
   // when the response is not trusted (an occluder or clutter must not resize the box).
-  float applied = result.confidence >= p.learn_threshold ? s : 1.0f;
-  applied = std::min(applied, m.max_target.width / m.target.width);
-  applied = std::min(applied, m.max_target.height / m.target.height);
-  applied = std::max(applied, m.min_target.width / m.target.width);
-  applied = std::max(applied, m.min_target.height / m.target.height);
-  m.target = cv::Size2f(m.target.width * applied, m.target.height * applied);
-  m.window = cv::Size2f(m.window.width * applied, m.window.height * applied);
+  const float applied = m.applyScale(result.confidence >= p.learn_threshold ? s : 1.0f);
   result.scale_change = applied;
 
   // Refinement: features at the new centre (needed for training anyway) are correlated with the
@@ -790,13 +683,7 @@ KcfResult trackStep(KcfTracker::Impl& m, const cv::Mat& frame, bool allow_learni
 
   // DSST scale filter at the new centre (only when the response is trusted).
   if (m.use_scale_filter && result.confidence >= p.learn_threshold) {
-    float f = m.detectScale(frame);
-    f = std::min(f, m.max_target.width / m.target.width);
-    f = std::min(f, m.max_target.height / m.target.height);
-    f = std::max(f, m.min_target.width / m.target.width);
-    f = std::max(f, m.min_target.height / m.target.height);
-    m.target = cv::Size2f(m.target.width * f, m.target.height * f);
-    m.window = cv::Size2f(m.window.width * f, m.window.height * f);
+    const float f = m.applyScale(m.detectScale(frame));
     result.scale_change = f;
     result.box = m.boxAt(m.center, m.target);
     if (learn) m.trainScale(frame, kScaleLearningRate);
