@@ -246,6 +246,7 @@ def main(argv=None):
                 o.peak = 1.0
                 o.state = Obstacle.STATE_TRACKING
                 o.time_to_contact = math.inf
+                o.time_to_contact_sigma = math.inf
                 gt.obstacles.append(o)
             bag.write(args.image_topic, im, stamp)
             bag.write(args.info_topic, info, stamp)

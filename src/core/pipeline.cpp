@@ -116,7 +116,7 @@ int stateRank(TrackState s) {
 
 struct Pipeline::Impl {
   struct Track {
-    explicit Track(const Params& p) : kcf(p), looming(p.looming_window) {}
+    explicit Track(const Params& p) : kcf(p) { looming.setParams(p.looming_rate_noise, p.looming_from_pixels); }
     int id = -1;
     KcfTracker kcf;
     LoomingEstimator looming;
@@ -203,7 +203,6 @@ struct Pipeline::Impl {
 
   void applyPending() {
     if (!have_pending) return;
-    const int old_window = params.looming_window;
     params = pending;
     have_pending = false;
     saliency.setParams(params);
@@ -211,7 +210,7 @@ struct Pipeline::Impl {
     for (auto& t : tracks) {
       t->kcf.setParams(params);
       t->learn_gate = -1.0f;  // the filter has the plain params now: configureFilter sets its gate again
-      if (params.looming_window != old_window) t->looming.setWindow(params.looming_window);
+      t->looming.setParams(params.looming_rate_noise, params.looming_from_pixels);
     }
     for (auto& t : pool) t->kcf.setParams(params);
     // The surplus of a smaller max_obstacles goes from the back; a challenger is not one of the
@@ -252,9 +251,7 @@ struct Pipeline::Impl {
       t = std::move(pool.back());
       pool.pop_back();
       t->kcf.setParams(params);
-      if (t->looming.window() != std::max(3, params.looming_window)) {
-        t->looming.setWindow(params.looming_window);
-      }
+      t->looming.setParams(params.looming_rate_noise, params.looming_from_pixels);
     } else {
       t = std::make_unique<Track>(params);
     }
@@ -278,8 +275,7 @@ struct Pipeline::Impl {
     t->ref_count = 0;
     t->learn_gate = -1.0f;
     t->learning = true;
-    t->looming.reset();
-    t->looming.add(stamp, box);
+    t->looming.start(frame, stamp, box);
     t->verified = true;
     t->watched = 0;
     t->probation = false;
@@ -300,7 +296,7 @@ struct Pipeline::Impl {
     return t;
   }
 
-  void acceptGood(Track& t, const cv::Rect2f& box, double stamp, bool restarted) {
+  void acceptGood(Track& t, const cv::Rect2f& box, double stamp) {
     const double dt = stamp - t.good_stamp;
     // Stamps microseconds apart (or a huge jump) give no usable velocity: a float overflow to
     // infinity here became a NaN box in predict() (fuzz_pipeline, test_robust_fuzz.cpp).
@@ -311,8 +307,6 @@ struct Pipeline::Impl {
         t.have_velocity = true;
       }
     }
-    if (restarted) t.looming.markDiscontinuity();
-    t.looming.add(stamp, box);
     t.box = box;
     t.good_box = box;
     t.good_stamp = stamp;
@@ -433,10 +427,11 @@ struct Pipeline::Impl {
     }
     if (!usableBox(box, frame_size)) return false;
     t.kcf.init(frame, box);
+    t.looming.restart(frame, stamp, box);
     t.result = best_result;
     t.result.box = box;
     t.result.model_updated = true;
-    acceptGood(t, box, stamp, /*restarted=*/true);
+    acceptGood(t, box, stamp);
     return true;
   }
 
@@ -508,7 +503,8 @@ struct Pipeline::Impl {
     const float needed = t.state == TrackState::kTracking ? goodPeak(t) : acceptPeak(t);
     if (r.peak >= needed && usableBox(r.box, frame_size) && inFrameFraction(r.box) >= kMinInFrame) {
       updateRefs(t, r);
-      acceptGood(t, r.box, stamp, false);
+      t.looming.track(frame, stamp, r.box);
+      acceptGood(t, r.box, stamp);
       return;
     }
     t.state = TrackState::kRedetecting;
@@ -729,7 +725,9 @@ struct Pipeline::Impl {
       o.psr = t->result.psr;
       o.state = t->state;
       o.expansion_rate = t->looming.expansionRate();
+      o.expansion_rate_sigma = t->looming.expansionRateSigma();
       o.time_to_contact = t->looming.timeToContact();
+      o.time_to_contact_sigma = t->looming.timeToContactSigma();
       o.age = t->age;
       o.model_updated = t->result.model_updated;
       out.push_back(o);

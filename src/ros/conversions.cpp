@@ -129,9 +129,13 @@ void toMessage(const core::Obstacle& o, obstacle_tracker::Obstacle& msg) {
   msg.angular_width = 0.0f;
   msg.angular_height = 0.0f;
   msg.expansion_rate = static_cast<float>(o.expansion_rate);
+  msg.expansion_rate_sigma = static_cast<float>(o.expansion_rate_sigma);
   msg.time_to_contact = std::isnan(o.time_to_contact)
                             ? std::numeric_limits<float>::infinity()
                             : static_cast<float>(o.time_to_contact);
+  msg.time_to_contact_sigma = std::isnan(o.time_to_contact_sigma)
+                                  ? std::numeric_limits<float>::infinity()
+                                  : static_cast<float>(o.time_to_contact_sigma);
 }
 
 }  // namespace bridge

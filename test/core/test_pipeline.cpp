@@ -327,7 +327,6 @@ TEST(Pipeline, SetParamsAppliesFromTheNextFrame) {
 TEST(Pipeline, LoomingOfAnApproachingObject) {
   // Constant closing speed: s(t) = s0 * T / (T - t), contact at T = 3 s, 30 frames per second.
   Params params;
-  params.looming_window = 15;
   Pipeline p(params);
   const cv::Mat bg = sky();
   const cv::Mat tex = texture(51, cv::Scalar(40, 40, 40));
@@ -345,8 +344,8 @@ TEST(Pipeline, LoomingOfAnApproachingObject) {
     drawObject(frame, tex, boxAt(k));
     const auto& out = p.process(frame, k / 30.0);
     ASSERT_FALSE(out.empty());
-    // The filter's scale search moves in steps of scale_step (5 %), so the box size is a
-    // staircase; 15-frame fits of it are within 25 % once the box has grown a few steps.
+    // The object is drawn at whole-pixel sizes, so it grows in 1 px steps; the rate from its
+    // pixel expansions is within 25 % once it has grown a few steps.
     if (k >= 24) {
       const double truth = T - k / 30.0;
       EXPECT_NEAR(out[0].time_to_contact, truth, 0.25 * truth) << "frame " << k;

@@ -312,7 +312,9 @@ TEST(Messages, ObstacleFieldsAndStates) {
   o.psr = 12.0f;
   o.state = core::TrackState::kRedetecting;
   o.expansion_rate = 0.5;
+  o.expansion_rate_sigma = 0.1;
   o.time_to_contact = 2.0;
+  o.time_to_contact_sigma = 0.4;
   obstacle_tracker::Obstacle msg;
   obstacle_tracker::bridge::toMessage(o, msg);
   EXPECT_EQ(msg.id, 7u);
@@ -321,9 +323,13 @@ TEST(Messages, ObstacleFieldsAndStates) {
   EXPECT_EQ(msg.state, obstacle_tracker::Obstacle::STATE_REDETECTING);
   EXPECT_FALSE(msg.has_bearing);
   EXPECT_FLOAT_EQ(msg.time_to_contact, 2.0f);
+  EXPECT_FLOAT_EQ(msg.expansion_rate_sigma, 0.1f);
+  EXPECT_FLOAT_EQ(msg.time_to_contact_sigma, 0.4f);
   o.time_to_contact = std::numeric_limits<double>::infinity();
+  o.time_to_contact_sigma = std::numeric_limits<double>::quiet_NaN();
   obstacle_tracker::bridge::toMessage(o, msg);
   EXPECT_TRUE(std::isinf(msg.time_to_contact));
+  EXPECT_TRUE(std::isinf(msg.time_to_contact_sigma));
   EXPECT_EQ(obstacle_tracker::bridge::toMessageState(core::TrackState::kTracking), obstacle_tracker::Obstacle::STATE_TRACKING);
   EXPECT_EQ(obstacle_tracker::bridge::toMessageState(core::TrackState::kLost), obstacle_tracker::Obstacle::STATE_LOST);
 }

@@ -34,8 +34,10 @@ namespace core {
   X(double, max_object_area_fraction, 0.25, 0.0001, 1.0, "",                                       \
     "largest salient region, as a fraction of the frame area")                                    \
   X(double, merge_iou, 0.5, 0.0, 1.0, "", "tracks overlapping more than this IoU are merged")      \
-  X(int, looming_window, 15, 3, 300, "frames",                                                     \
-    "box-size history used for the expansion rate (least-squares slope of ln size)")              \
+  X(double, looming_rate_noise, 0.3, 0.0, 10.0, "1/s^1.5",                                        \
+    "process noise of the expansion rate in the looming filter (how fast closing may change)")    \
+  X(bool, looming_from_pixels, true, false, true, "",                                              \
+    "measure the expansion by aligning the object's pixels between frames (else box sizes alone)") \
   X(double, relative_peak_threshold, 0.4, 0.0, 1.0, "",                                            \
     "also re-detect when the peak falls below this fraction of the track's running mean peak")    \
   X(double, learn_relative_threshold, 0.7, 0.0, 1.0, "",                                           \

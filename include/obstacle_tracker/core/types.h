@@ -31,8 +31,12 @@ struct Obstacle {
   float peak = 0.0f;              // raw maximum of the correlation response
   float psr = 0.0f;               // peak-to-sidelobe ratio of the response
   TrackState state = TrackState::kSearching;
-  double expansion_rate = 0.0;    // d ln(sqrt(w*h)) / dt, 1/s (positive when growing)
-  double time_to_contact = std::numeric_limits<double>::infinity();  // s; +inf when not closing
+  // Looming, from the box-size filter (box_size.h): the expansion rate d ln(sqrt(w*h)) / dt and
+  // the time to contact 1 / expansion_rate, each with its standard deviation.
+  double expansion_rate = 0.0;        // 1/s (positive when growing)
+  double expansion_rate_sigma = 0.0;  // 1/s
+  double time_to_contact = std::numeric_limits<double>::infinity();        // s; +inf when not closing
+  double time_to_contact_sigma = std::numeric_limits<double>::infinity();  // s; +inf when not closing
   int age = 0;                    // frames since the track started
   bool model_updated = false;     // the filter learned from this frame (false under occlusion)
   // False while an auto-started track has not shown itself an obstacle (moved against the

@@ -1,0 +1,57 @@
+// Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
+//
+// Looming of a track: its expansion rate and time to contact, with their uncertainty.
+//
+// s = sqrt(w h) of the obstacle's image. An object closing at a constant speed has
+// s(t) = s0 T / (T - t) and d ln s / dt = 1 / (T - t): the expansion rate is the inverse of the
+// time left before contact (Lee, Perception 1976). A SizeFilter (size_filter.h, an extended
+// Kalman filter on ln s and its rate under that motion model) is fed, per tracked frame, the
+// object's expansion since the previous frame measured from its own pixels (expansion_meter.h).
+// The correlation filter's box size is used only on frames without that measurement (a target
+// too small or too smooth): its scale search moves in steps of scale_step and lags growth (on
+// the generated approach scenes the box is a third of the aircraft after 150 frames), so its
+// sizes would pull the rate down. A re-detection restarts the size at the re-detected box and
+// keeps the rate (a re-sized box is not an expansion).
+//
+// The reported box stays the correlation filter's: the pixel expansions are good for the rate
+// over a few frames, but their small per-frame biases (deformation, background inside the box)
+// add up over hundreds of frames, and a box driven by them drifted on the dev clips.
+#pragma once
+
+#include <opencv2/core.hpp>
+
+#include "obstacle_tracker/core/expansion_meter.h"
+#include "obstacle_tracker/core/size_filter.h"
+
+namespace obstacle_tracker {
+namespace core {
+
+class LoomingEstimator {
+ public:
+  static constexpr double kStartSigma = 0.05;   // ln units: a given, detected or re-detected box
+  static constexpr double kFilterSigma = 0.05;  // ln units: the scale search's step (5 %)
+
+  // rate_noise: Params::looming_rate_noise; use_pixels: Params::looming_from_pixels.
+  void setParams(double rate_noise, bool use_pixels);
+
+  // A new track on box at stamp (s).
+  void start(const cv::Mat& frame, double stamp, const cv::Rect2f& box);
+  // A frame the correlation filter tracked: its box.
+  void track(const cv::Mat& frame, double stamp, const cv::Rect2f& box);
+  // A re-detection restarted the filter on box (the object may have moved far or been hidden:
+  // no expansion is measured across the gap; the size restarts, the rate is kept).
+  void restart(const cv::Mat& frame, double stamp, const cv::Rect2f& box);
+
+  double expansionRate() const { return filter_.expansionRate(); }           // 1/s
+  double expansionRateSigma() const { return filter_.expansionRateSigma(); } // 1/s
+  double timeToContact() const { return filter_.timeToContact(); }           // s, +inf if not closing
+  double timeToContactSigma() const { return filter_.timeToContactSigma(); } // s, +inf if not closing
+
+ private:
+  bool use_pixels_ = true;
+  SizeFilter filter_;
+  ExpansionMeter meter_;
+};
+
+}  // namespace core
+}  // namespace obstacle_tracker

@@ -1,0 +1,58 @@
+// Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
+#include "obstacle_tracker/core/expansion_meter.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <opencv2/imgproc.hpp>
+
+namespace obstacle_tracker {
+namespace core {
+
+ExpansionMeter::ExpansionMeter() { sampler_.reserve(kPatchSide, kPatchSide, CV_8UC3, kPatchSide); }
+
+void ExpansionMeter::toGrey(const cv::Mat& sampled, cv::Mat& grey) const {
+  if (sampled.channels() == 1) {
+    sampled.copyTo(grey);
+  } else {
+    cv::cvtColor(sampled, grey, cv::COLOR_BGR2GRAY);
+  }
+}
+
+void ExpansionMeter::setReference(const cv::Mat& frame, const cv::Rect2f& box) {
+  have_reference_ = false;
+  if (!std::isfinite(box.x) || !std::isfinite(box.y) || !std::isfinite(box.width) || !std::isfinite(box.height) ||
+      !(box.width >= 1.0f) || !(box.height >= 1.0f) || !(std::max(box.width, box.height) >= kMinBoxSide)) {
+    return;
+  }
+  const float side = kContext * std::max(box.width, box.height);
+  window_ = cv::Size2f(side, side);
+  reference_size_ = std::sqrt(box.width * box.height);
+  const float k = kPatchSide / side;
+  const float rw = std::max(box.width * k * kRegionMargin, kMinRegionSide);
+  const float rh = std::max(box.height * k * kRegionMargin, kMinRegionSide);
+  const float c = 0.5f * kPatchSide;
+  // The aligner reads one pixel around the region (gradients, bilinear steps).
+  region_ = cv::Rect(cvRound(c - 0.5f * rw), cvRound(c - 0.5f * rh), cvRound(rw), cvRound(rh)) &
+            cv::Rect(2, 2, kPatchSide - 4, kPatchSide - 4);
+  const cv::Point2f centre(box.x + 0.5f * box.width, box.y + 0.5f * box.height);
+  sampler_.sample(frame, centre, window_, kPatchSide, kPatchSide, sampled_);
+  toGrey(sampled_, reference_grey_);
+  have_reference_ = true;
+}
+
+ExpansionMeasurement ExpansionMeter::measure(const cv::Mat& frame, cv::Point2f centre) {
+  ExpansionMeasurement m;
+  if (!have_reference_ || !std::isfinite(centre.x) || !std::isfinite(centre.y)) return m;
+  sampler_.sample(frame, centre, window_, kPatchSide, kPatchSide, sampled_);
+  toGrey(sampled_, current_grey_);
+  const ScaleEstimate e = align_.estimate(reference_grey_, current_grey_, region_);
+  if (!e.valid) return m;
+  m.valid = true;
+  m.log_ratio = e.log_scale;
+  m.sigma = std::max({kMinSigma, e.sigma, kOutlinePx / reference_size_});
+  return m;
+}
+
+}  // namespace core
+}  // namespace obstacle_tracker
