@@ -39,7 +39,7 @@ sed -n '/^## Overall (OPE)/,/^## Per sequence/p' "$OUT/results.md" | sed '$d'
 echo
 echo "Demo outputs:"
 echo "  $OUT/overlay.mp4     the frames with the tracker's box, id, confidence and state"
-echo "  $OUT/result.txt      x,y,w,h,confidence per frame (0,0,0,0,0 when nothing is tracked)"
+echo "  $OUT/result.txt      x,y,w,h,confidence,time_to_contact per frame (0,0,0,0,0,inf when nothing is tracked)"
 echo "  $OUT/results.md      accuracy (OTB precision@20 px, success AUC) and fps, with KCF and CSRT"
 echo "  $OUT/eval/           per-frame boxes, curves and precision/success plots"
 echo "  $OUT/scenes/$SCENARIO/  the generated frames and ground truth"

@@ -4,7 +4,8 @@
 //                [--overlay OUT] [--quiet]
 //
 // Runs core::Pipeline over an OTB folder, a folder of images or a video, and writes one line per
-// frame, `x,y,w,h,confidence` of the main obstacle (`0,0,0,0,0` when none). Prints the core's
+// frame, `x,y,w,h,confidence,time_to_contact` of the main obstacle (time to contact in seconds,
+// `inf` when not closing; `0,0,0,0,0,inf` when none). Prints the core's
 // frames per second at the end (only Pipeline::process / startTrack are timed; decoding,
 // conversion, drawing and writing are not). Exit codes: 0 success, 1 input/output error,
 // 2 usage error.
@@ -46,7 +47,8 @@ const char* kUsage =
     "  --gt FILE       ground-truth file (overrides the one found next to INPUT)\n"
     "  --overlay OUT   draw boxes, ids, confidence and state: a video (.mp4, .avi, .mkv) or a folder\n"
     "  --quiet         no progress bar and no summary on standard error\n"
-    "Output: one line per frame, x,y,w,h,confidence of the main obstacle (0,0,0,0,0 when none).\n";
+    "Output: one line per frame, x,y,w,h,confidence,time_to_contact of the main obstacle\n"
+    "        (time to contact in s, inf when not closing; 0,0,0,0,0,inf when none).\n";
 
 struct UsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
@@ -239,10 +241,12 @@ int run(const Options& opt) {
       }
     }
     if (main != nullptr) {
-      std::snprintf(line, sizeof(line), "%.2f,%.2f,%.2f,%.2f,%.3f\n", main->box.x, main->box.y, main->box.width,
-                    main->box.height, main->confidence);
+      char ttc[32] = "inf";
+      if (std::isfinite(main->time_to_contact)) std::snprintf(ttc, sizeof(ttc), "%.3f", main->time_to_contact);
+      std::snprintf(line, sizeof(line), "%.2f,%.2f,%.2f,%.2f,%.3f,%s\n", main->box.x, main->box.y, main->box.width,
+                    main->box.height, main->confidence, ttc);
     } else {
-      std::snprintf(line, sizeof(line), "0,0,0,0,0\n");
+      std::snprintf(line, sizeof(line), "0,0,0,0,0,inf\n");
     }
     *out << line;
     if (!*out) throw std::runtime_error("write error on '" + (opt.output.empty() ? "stdout" : opt.output) + "'");
