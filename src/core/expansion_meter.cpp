@@ -21,6 +21,8 @@ void ExpansionMeter::toGrey(const cv::Mat& sampled, cv::Mat& grey) const {
 
 void ExpansionMeter::setReference(const cv::Mat& frame, const cv::Rect2f& box) {
   have_reference_ = false;
+  const uchar* measured_frame = measured_frame_;  // valid for this call only
+  measured_frame_ = nullptr;
   if (!std::isfinite(box.x) || !std::isfinite(box.y) || !std::isfinite(box.width) || !std::isfinite(box.height) ||
       !(box.width >= 1.0f) || !(box.height >= 1.0f) || !(std::max(box.width, box.height) >= kMinBoxSide)) {
     return;
@@ -36,8 +38,13 @@ void ExpansionMeter::setReference(const cv::Mat& frame, const cv::Rect2f& box) {
   region_ = cv::Rect(cvRound(c - 0.5f * rw), cvRound(c - 0.5f * rh), cvRound(rw), cvRound(rh)) &
             cv::Rect(2, 2, kPatchSide - 4, kPatchSide - 4);
   const cv::Point2f centre(box.x + 0.5f * box.width, box.y + 0.5f * box.height);
-  sampler_.sample(frame, centre, window_, kPatchSide, kPatchSide, sampled_);
-  toGrey(sampled_, reference_grey_);
+  if (frame.data == measured_frame && centre == measured_centre_ && window_ == measured_window_) {
+    // The box did not change size since measure(): its patch of this frame is the reference.
+    cv::swap(reference_grey_, current_grey_);
+  } else {
+    sampler_.sample(frame, centre, window_, kPatchSide, kPatchSide, sampled_);
+    toGrey(sampled_, reference_grey_);
+  }
   have_reference_ = true;
 }
 
@@ -46,6 +53,9 @@ ExpansionMeasurement ExpansionMeter::measure(const cv::Mat& frame, cv::Point2f c
   if (!have_reference_ || !std::isfinite(centre.x) || !std::isfinite(centre.y)) return m;
   sampler_.sample(frame, centre, window_, kPatchSide, kPatchSide, sampled_);
   toGrey(sampled_, current_grey_);
+  measured_frame_ = frame.data;
+  measured_centre_ = centre;
+  measured_window_ = window_;
   const ScaleEstimate e = align_.estimate(reference_grey_, current_grey_, region_);
   if (!e.valid) return m;
   m.valid = true;

@@ -17,23 +17,32 @@ void halveImage(const cv::Mat& src, cv::Mat& dst) {
   }
 }
 
+namespace {
+
+// One 5-tap binomial pass along a line of n values `step` apart: src -> dst (edges replicated).
+void binomialLine(const float* src, float* dst, int n, std::ptrdiff_t src_step, std::ptrdiff_t dst_step) {
+  const auto at = [&](int k) { return src[std::min(std::max(k, 0), n - 1) * src_step]; };
+  const auto tap = [](float a, float b, float c, float d, float e) {
+    return (a + 4.0f * b + 6.0f * c + 4.0f * d + e) * (1.0f / 16.0f);
+  };
+  for (int i = 0; i < n; ++i) {
+    if (i >= 2 && i < n - 2) {  // interior: no clamping
+      const float* p = src + (i - 2) * src_step;
+      dst[i * dst_step] = tap(p[0], p[src_step], p[2 * src_step], p[3 * src_step], p[4 * src_step]);
+    } else {
+      dst[i * dst_step] = tap(at(i - 2), at(i - 1), at(i), at(i + 1), at(i + 2));
+    }
+  }
+}
+
+}  // namespace
+
 void binomialBlur(cv::Mat& img, cv::Mat& tmp) {
   tmp.create(img.size(), CV_32F);
-  const int w = img.cols, h = img.rows;
-  const auto tap = [](const float* p, int i, int n, int step) {
-    const auto at = [&](int k) { return p[static_cast<std::ptrdiff_t>(std::min(std::max(k, 0), n - 1)) * step]; };
-    return (at(i - 2) + 4.0f * at(i - 1) + 6.0f * at(i) + 4.0f * at(i + 1) + at(i + 2)) * (1.0f / 16.0f);
-  };
-  for (int y = 0; y < h; ++y) {  // rows: img -> tmp
-    const float* src = img.ptr<float>(y);
-    float* dst = tmp.ptr<float>(y);
-    for (int x = 0; x < w; ++x) dst[x] = tap(src, x, w, 1);
-  }
-  const int step = static_cast<int>(tmp.step1());
-  for (int x = 0; x < w; ++x) {  // columns: tmp -> img
-    const float* src = tmp.ptr<float>(0) + x;
-    for (int y = 0; y < h; ++y) img.ptr<float>(y)[x] = tap(src, y, h, step);
-  }
+  for (int y = 0; y < img.rows; ++y) binomialLine(img.ptr<float>(y), tmp.ptr<float>(y), img.cols, 1, 1);
+  const std::ptrdiff_t src_step = static_cast<std::ptrdiff_t>(tmp.step1());
+  const std::ptrdiff_t dst_step = static_cast<std::ptrdiff_t>(img.step1());
+  for (int x = 0; x < img.cols; ++x) binomialLine(tmp.ptr<float>(0) + x, img.ptr<float>(0) + x, img.rows, src_step, dst_step);
 }
 
 void centralGradients(const cv::Mat& img, cv::Mat& grad_x, cv::Mat& grad_y) {

@@ -86,26 +86,38 @@ bool ScaleAlignment::alignLevel(const Level& lv, const cv::Rect2f& r, double& a,
   Eigen::Matrix3d h;
   for (int it = 0; it < kIterations; ++it) {
     const double s = std::exp(a);
-    h.setZero();
-    Eigen::Vector3d b = Eigen::Vector3d::Zero();
+    // The upper triangle of H and b, summed in double (a region has up to 128^2 pixels).
+    double hss = 0.0, hsx = 0.0, hsy = 0.0, hxx = 0.0, hxy = 0.0, hyy = 0.0, bs = 0.0, bx = 0.0, by = 0.0;
     residuals_.clear();
     for (int y = ya; y <= yb; ++y) {
       const float* gx = lv.grad_x.ptr<float>(y);
       const float* gy = lv.grad_y.ptr<float>(y);
       const float* ref = lv.ref.ptr<float>(y);
+      const float wy = static_cast<float>(cy + s * (y - cy) + t.y);
+      const float dy = static_cast<float>(y - cy);
       for (int x = xa; x <= xb; ++x) {
         const float wx = static_cast<float>(cx + s * (x - cx) + t.x);
-        const float wy = static_cast<float>(cy + s * (y - cy) + t.y);
         if (!bilinearInside(lv.cur, wx, wy)) continue;
-        const double e = bilinearAt(lv.cur, wx, wy) - ref[x];
-        residuals_.push_back(static_cast<float>(std::abs(e)));
+        const float e = bilinearAt(lv.cur, wx, wy) - ref[x];
+        const float abs_e = std::abs(e);
+        residuals_.push_back(abs_e);
         // Huber weight against the previous iteration's robust scale.
-        const double w = sigma_r > 0.0 && std::abs(e) > kHuber * sigma_r ? kHuber * sigma_r / std::abs(e) : 1.0;
-        const Eigen::Vector3d sd(gx[x] * (x - cx) + gy[x] * (y - cy), gx[x], gy[x]);
-        h += w * sd * sd.transpose();
-        b += w * e * sd;
+        const float w = sigma_r > 0.0 && abs_e > kHuber * sigma_r ? static_cast<float>(kHuber * sigma_r) / abs_e : 1.0f;
+        const float sd_s = gx[x] * static_cast<float>(x - cx) + gy[x] * dy;  // steepest descent, scale
+        const float wsx = w * gx[x], wsy = w * gy[x], wss = w * sd_s;
+        hss += wss * sd_s;
+        hsx += wss * gx[x];
+        hsy += wss * gy[x];
+        hxx += wsx * gx[x];
+        hxy += wsx * gy[x];
+        hyy += wsy * gy[x];
+        bs += wss * e;
+        bx += wsx * e;
+        by += wsy * e;
       }
     }
+    h << hss, hsx, hsy, hsx, hxx, hxy, hsy, hxy, hyy;
+    const Eigen::Vector3d b(bs, bx, by);
     if (residuals_.size() < 16) return false;
     sigma_r = std::max(kMinResidualSigma, 1.4826 * medianOf(residuals_, residuals_.size()));
     const Eigen::FullPivLU<Eigen::Matrix3d> lu(h);

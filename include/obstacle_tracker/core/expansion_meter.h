@@ -55,7 +55,10 @@ class ExpansionMeter {
   ExpansionMeter();
 
   // Forgets the reference.
-  void reset() { have_reference_ = false; }
+  void reset() {
+    have_reference_ = false;
+    measured_frame_ = nullptr;
+  }
   bool hasReference() const { return have_reference_; }
 
   // Keeps the patch around box in frame (CV_8UC1 or CV_8UC3) as the reference of the next
@@ -75,6 +78,11 @@ class ExpansionMeter {
   cv::Size2f window_;  // frame pixels covered by the reference patch
   cv::Rect region_;    // the reference box x kRegionMargin in patch px (at least kMinRegionSide a side)
   double reference_size_ = 1.0;  // sqrt(w h) of the reference box, frame px
+  // Where the last measure() sampled its patch: when setReference() asks for the same window of
+  // the same frame (the box kept its size), that patch is reused instead of resampled.
+  const uchar* measured_frame_ = nullptr;
+  cv::Point2f measured_centre_;
+  cv::Size2f measured_window_;
   bool have_reference_ = false;
 };
 
