@@ -27,6 +27,8 @@ void ExpansionMeter::setReference(const cv::Mat& frame, const cv::Rect2f& box) {
       !(box.width >= 1.0f) || !(box.height >= 1.0f) || !(std::max(box.width, box.height) >= kMinBoxSide)) {
     return;
   }
+  // Buffers for this frame's width and type (a large box is box-filtered from a frame row).
+  sampler_.reserve(kPatchSide, kPatchSide, frame.type(), frame.cols);
   const float side = kContext * std::max(box.width, box.height);
   window_ = cv::Size2f(side, side);
   reference_size_ = std::sqrt(box.width * box.height);

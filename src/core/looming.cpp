@@ -27,18 +27,23 @@ void LoomingEstimator::start(const cv::Mat& frame, double stamp, const cv::Rect2
 }
 
 void LoomingEstimator::track(const cv::Mat& frame, double stamp, const cv::Rect2f& box) {
+  if (!filter_.initialized()) {  // never started, or its state stopped being finite
+    start(frame, stamp, box);
+    return;
+  }
   filter_.predict(stamp);
   ExpansionMeasurement m;
   if (use_pixels_) m = meter_.measure(frame, centreOf(box));
-  if (m.valid) {
-    filter_.updateExpansion(m.log_ratio, m.sigma);
-  } else {
-    filter_.updateSize(sizeOf(box), kFilterSigma);
-  }
+  // The box size stands in for an expansion that was not measured or was dropped as an outlier.
+  if (!m.valid || !filter_.updateExpansion(m.log_ratio, m.sigma)) filter_.updateSize(sizeOf(box), kBoxSizeSigma);
   if (use_pixels_) meter_.setReference(frame, box);
 }
 
 void LoomingEstimator::restart(const cv::Mat& frame, double stamp, const cv::Rect2f& box) {
+  if (!filter_.initialized()) {
+    start(frame, stamp, box);
+    return;
+  }
   filter_.predict(stamp);
   filter_.restartSize(sizeOf(box), kStartSigma);
   if (use_pixels_) meter_.setReference(frame, box);

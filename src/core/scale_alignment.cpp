@@ -16,7 +16,6 @@ namespace {
 
 constexpr double kMaxSigma = 0.05;        // ln units: a fit less certain than this is no measurement
 constexpr double kMinResidualSigma = 1.0; // grey levels: quantisation, so a perfect fit has weights
-constexpr int kMaxRegionPixels = 128 * 128;
 
 // Level-l coordinate of a level-0 coordinate (2x2-mean pyramid, image_pyramid.h).
 double toLevel(double v, int level) {
@@ -39,14 +38,13 @@ ScaleEstimate ScaleAlignment::estimate(const cv::Mat& reference, const cv::Mat& 
   }
   ScaleEstimate out;
   if ((region & cv::Rect(0, 0, reference.cols, reference.rows)) != region || region.width < 4 ||
-      region.height < 4 || region.area() > kMaxRegionPixels) {
+      region.height < 4) {
     return out;
   }
   reference.convertTo(levels_[0].ref, CV_32F);
   current.convertTo(levels_[0].cur, CV_32F);
   // Smoothing first widens the range over which the linearisation holds: a texture of 1-2 px
-  // detail moves out of it at a few percent of scale (measured: a 4 % expansion of a textured
-  // 150 px object read as 2.3 % unsmoothed, 3.3 % smoothed).
+  // detail moves out of it at a few percent of scale, and the fit then stops short.
   binomialBlur(levels_[0].ref, blur_buffer_);
   binomialBlur(levels_[0].cur, blur_buffer_);
   for (int l = 1; l < kLevels; ++l) {
@@ -54,7 +52,7 @@ ScaleEstimate ScaleAlignment::estimate(const cv::Mat& reference, const cv::Mat& 
     halveImage(levels_[l - 1].cur, levels_[l].cur);
   }
   for (auto& lv : levels_) centralGradients(lv.ref, lv.grad_x, lv.grad_y);
-  residuals_.reserve(static_cast<std::size_t>(kMaxRegionPixels));
+  residuals_.reserve(static_cast<std::size_t>(region.area()));  // allocates once per patch size
   double a = 0.0;  // ln s
   cv::Point2d t(0.0, 0.0);
   double var_ls = 0.0;
@@ -63,7 +61,8 @@ ScaleEstimate ScaleAlignment::estimate(const cv::Mat& reference, const cv::Mat& 
     const double x1 = toLevel(region.x + region.width - 1, l), y1 = toLevel(region.y + region.height - 1, l);
     const cv::Rect2f r(static_cast<float>(x0), static_cast<float>(y0), static_cast<float>(x1 - x0),
                        static_cast<float>(y1 - y0));
-    if (!alignLevel(levels_[l], r, a, t, var_ls)) return out;
+    // The coarse level only has to bring the fine one into its range; the fine one must converge.
+    if (!alignLevel(levels_[l], r, a, t, var_ls) && l == 0) return out;
     if (l > 0) t *= 2.0;
   }
   const double sigma = std::sqrt(var_ls);
@@ -83,6 +82,7 @@ bool ScaleAlignment::alignLevel(const Level& lv, const cv::Rect2f& r, double& a,
   const int xa = static_cast<int>(std::ceil(r.x)), xb = static_cast<int>(std::floor(r.x + r.width));
   const int ya = static_cast<int>(std::ceil(r.y)), yb = static_cast<int>(std::floor(r.y + r.height));
   double sigma_r = 0.0;  // robust residual scale of the previous iteration (0: none yet)
+  bool converged = false;
   Eigen::Matrix3d h;
   for (int it = 0; it < kIterations; ++it) {
     const double s = std::exp(a);
@@ -130,11 +130,14 @@ bool ScaleAlignment::alignLevel(const Level& lv, const cv::Rect2f& r, double& a,
     t.x -= s * dp(1) / k;
     t.y -= s * dp(2) / k;
     a -= std::log(k);
-    if (std::abs(dp(0)) < kEpsilon && std::abs(dp(1)) < 0.01 && std::abs(dp(2)) < 0.01) break;
+    if (std::abs(dp(0)) < kEpsilon && std::abs(dp(1)) < kShiftEpsilon && std::abs(dp(2)) < kShiftEpsilon) {
+      converged = true;
+      break;
+    }
   }
   const Eigen::Matrix3d cov = h.inverse();
   var_ls = cov(0, 0) * sigma_r * sigma_r;
-  return std::isfinite(var_ls);
+  return converged && std::isfinite(var_ls);
 }
 
 }  // namespace core

@@ -112,6 +112,41 @@ TEST(PipelineMemory, ThreeTracksNoHeapAllocationPerFrame) {
 #endif
 }
 
+TEST(PipelineMemory, GrowingObjectNoHeapAllocationPerFrame) {
+#ifndef OT_COUNT_ALLOCATIONS
+  GTEST_SKIP() << "allocation counting needs glibc and no sanitizer (which interposes malloc)";
+#else
+  // An aircraft closing on the camera, 1280x720: its box grows from frame to frame, so every
+  // buffer that depends on a box size (the looming estimator's patches, a large box's
+  // box-filtered frame rows) is asked for a new size. Rendered before the pipeline exists.
+  constexpr int kApproachFrames = 60;
+  os::SceneGenerator gen = os::makeScenario("approach", 1, 150, cv::Size(1280, 720));
+  std::vector<cv::Mat> frames(kApproachFrames);
+  os::FrameTruth truth;
+  cv::Rect2f start;
+  for (int i = 0; i < kApproachFrames; ++i) {
+    gen.renderFrame(90 + i, frames[static_cast<std::size_t>(i)], i == 0 ? &truth : nullptr);  // the growing part
+    if (i == 0) start = truth.find(1)->box;
+  }
+  oc::Pipeline pipeline;
+  pipeline.startTrack(frames[0], 0.0, start);
+  for (int i = 1; i <= kWarmup; ++i) pipeline.process(frames[static_cast<std::size_t>(i)], i / gen.fps());
+  long total = 0;
+  std::size_t largest = 0;
+  for (int i = kWarmup + 1; i < kApproachFrames; ++i) {
+    g_allocations = 0;
+    g_largest = 0;
+    g_counting = true;
+    const auto& out = pipeline.process(frames[static_cast<std::size_t>(i)], i / gen.fps());
+    g_counting = false;
+    ASSERT_EQ(alive(out), 1) << "frame " << i;
+    total += g_allocations.load();
+    largest = std::max(largest, g_largest.load());
+  }
+  EXPECT_EQ(total, 0) << "largest allocation " << largest << " bytes";
+#endif
+}
+
 TEST(PipelineMemory, ThreeTracksCoreHeapUnder30MiB) {
 #ifndef OT_COUNT_ALLOCATIONS
   GTEST_SKIP() << "mallinfo2 needs glibc's allocator (not a sanitizer's)";

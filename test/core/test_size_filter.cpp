@@ -19,6 +19,11 @@ constexpr double kFps = 30.0;
 // s(t) = s0 T / (T - t): contact at T (T < 0: receding, s shrinks as T / (T - t) with T - t < 0).
 double approachSize(double s0, double T, double t) { return s0 * T / (T - t); }
 
+// ln of the size ratio from the frame before t to t.
+double approachExpansion(double s0, double T, double t) {
+  return std::log(approachSize(s0, T, t) / approachSize(s0, T, t - 1.0 / kFps));
+}
+
 }  // namespace
 
 TEST(SizeFilter, ConstantSizeHasNoRateAndNoContact) {
@@ -33,13 +38,14 @@ TEST(SizeFilter, ConstantSizeHasNoRateAndNoContact) {
   }
   EXPECT_NEAR(f.size(), 40.0, 0.05 * 40.0);
   EXPECT_NEAR(f.expansionRate(), 0.0, 3.0 * f.expansionRateSigma());
+  // Not closing, or closing so uncertainly that the time to contact says nothing yet.
+  EXPECT_TRUE(!std::isfinite(f.timeToContact()) || f.timeToContactSigma() > f.timeToContact());
   EXPECT_LT(f.expansionRateSigma(), 0.2);
   EXPECT_GT(f.expansionRateSigma(), 0.0);
 }
 
 TEST(SizeFilter, ApproachAtConstantSpeedFromExpansionAlone) {
-  // Exact expansions (as Median Flow on a well-textured object gives them) and a size that stays
-  // where it started (the correlation filter's lagging box): the rate and the size still follow.
+  // Exact expansions alone (no size measurement at all): the rate and the size follow.
   const double T = 4.0, s0 = 20.0;
   SizeFilter f;
   f.reset(0.0, s0, 0.05);
@@ -47,7 +53,7 @@ TEST(SizeFilter, ApproachAtConstantSpeedFromExpansionAlone) {
   for (int k = 1; k <= 100; ++k) {
     const double t = k / kFps;
     f.predict(t);
-    f.updateExpansion(std::log(approachSize(s0, T, t) / approachSize(s0, T, t - 1.0 / kFps)), 0.003);
+    f.updateExpansion(approachExpansion(s0, T, t), 0.003);
     if (k < 10) continue;
     ++checked;
     const double truth = T - t;
@@ -86,7 +92,7 @@ TEST(SizeFilter, RecedingObjectShrinksAndNeverCloses) {
   for (int k = 1; k <= 90; ++k) {
     const double t = k / kFps;
     f.predict(t);
-    f.updateExpansion(std::log(approachSize(s0, T, t) / approachSize(s0, T, t - 1.0 / kFps)), 0.003);
+    f.updateExpansion(approachExpansion(s0, T, t), 0.003);
     f.updateSize(approachSize(s0, T, t), 0.05);
   }
   const double t = 90 / kFps;
@@ -122,6 +128,11 @@ TEST(SizeFilter, BadValuesChangeNothing) {
   EXPECT_DOUBLE_EQ(f.size(), size);
   EXPECT_DOUBLE_EQ(f.expansionRate(), rate);
   EXPECT_TRUE(std::isfinite(f.expansionRateSigma()));
+  SizeFilter bad;
+  bad.reset(0.0, std::numeric_limits<double>::quiet_NaN(), 0.05);
+  EXPECT_FALSE(bad.initialized());
+  bad.reset(0.0, -1.0, 0.05);
+  EXPECT_FALSE(bad.initialized());
 }
 
 TEST(SizeFilter, ImminentContactStaysFinite) {
@@ -142,6 +153,46 @@ TEST(SizeFilter, ImminentContactStaysFinite) {
   }
   EXPECT_GT(f.expansionRate(), 0.0);
   EXPECT_LT(f.timeToContact(), 0.5);
+}
+
+TEST(SizeFilter, GapsDoNotRunAway) {
+  // Closing at 1 %/frame, then gaps of 1.5 s (re-detections far apart), 10 s and 1e200 s: the
+  // rate never runs away and the state stays finite.
+  SizeFilter f;
+  f.reset(0.0, 30.0, 0.05);
+  double t = 0.0;
+  for (int k = 1; k <= 30; ++k) {
+    t = k / kFps;
+    f.predict(t);
+    f.updateExpansion(0.01, 0.005);
+  }
+  for (int gap = 0; gap < 12; ++gap) {
+    t += 1.5;
+    f.predict(t);
+    f.restartSize(30.0, 0.05);
+  }
+  EXPECT_LT(f.expansionRate(), 2.0);
+  f.predict(t + 10.0);
+  f.predict(1e200);
+  EXPECT_TRUE(f.initialized());
+  EXPECT_TRUE(std::isfinite(f.size()));
+  EXPECT_TRUE(std::isfinite(f.expansionRate()));
+  EXPECT_TRUE(std::isfinite(f.expansionRateSigma()));
+}
+
+TEST(SizeFilter, TrackStartingCloseToContact) {
+  // The track starts 0.5 s before contact: per-frame expansions of 7 % and more from the first
+  // frame. The first measurements are not gated away; the time to contact is within 20 % after
+  // a few frames.
+  const double T = 0.5, s0 = 40.0;
+  SizeFilter f;
+  f.reset(0.0, s0, 0.05);
+  for (int k = 1; k <= 9; ++k) {
+    const double t = k / kFps;
+    f.predict(t);
+    f.updateExpansion(approachExpansion(s0, T, t), 0.005);
+    if (k >= 5) EXPECT_NEAR(f.timeToContact(), T - t, 0.2 * (T - t)) << "frame " << k;
+  }
 }
 
 TEST(SizeFilter, OutlierExpansionIsDropped) {

@@ -41,11 +41,11 @@ class ExpansionMeter {
   static constexpr float kMinBoxSide = 6.0f;      // px, longer side; a smaller box has too few pixels
   static constexpr float kMinRegionSide = 12.0f;  // patch px: the aligned region around a thin box
   // The aligned region is the box enlarged by this: a region ending at the object's outline sees
-  // only the inner half of the edge's profile (measured: expansions read 20 % short).
+  // only the inner half of the edge's profile, and the expansions read short.
   static constexpr float kRegionMargin = 1.2f;
   // The fit's own standard deviation assumes independent pixel noise; neighbouring pixels are
-  // not independent (measured on rendered objects: errors of 0.3-0.7 % where the fit claimed
-  // 0.1 %), so it is not taken below this.
+  // not independent, and on rendered objects the errors were several times the fit's figure,
+  // so it is not taken below this.
   static constexpr double kMinSigma = 0.005;
   // Nor below kOutlinePx / sqrt(w h) of the box: an object's outline is rendered (and its
   // pixels quantised) to about half a pixel in each frame, which is a large share of a small

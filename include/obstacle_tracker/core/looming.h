@@ -8,14 +8,14 @@
 // Kalman filter on ln s and its rate under that motion model) is fed, per tracked frame, the
 // object's expansion since the previous frame measured from its own pixels (expansion_meter.h).
 // The correlation filter's box size is used only on frames without that measurement (a target
-// too small or too smooth): its scale search moves in steps of scale_step and lags growth (on
-// the generated approach scenes the box is a third of the aircraft after 150 frames), so its
-// sizes would pull the rate down. A re-detection restarts the size at the re-detected box and
-// keeps the rate (a re-sized box is not an expansion).
+// too small or too smooth, or an outlier): its scale search moves in steps of scale_step with a
+// preference for no change and lags growth, so its sizes would pull the rate down. A
+// re-detection restarts the size at the re-detected box and keeps the rate (a re-sized box is
+// not an expansion).
 //
 // The reported box stays the correlation filter's: the pixel expansions are good for the rate
-// over a few frames, but their small per-frame biases (deformation, background inside the box)
-// add up over hundreds of frames, and a box driven by them drifted on the dev clips.
+// over a few frames, but their small per-frame errors add up over hundreds of frames, and a
+// box driven by them drifts (docs/looming.md).
 #pragma once
 
 #include <opencv2/core.hpp>
@@ -29,7 +29,7 @@ namespace core {
 class LoomingEstimator {
  public:
   static constexpr double kStartSigma = 0.05;   // ln units: a given, detected or re-detected box
-  static constexpr double kFilterSigma = 0.05;  // ln units: the scale search's step (5 %)
+  static constexpr double kBoxSizeSigma = 0.05;  // ln units: the scale search's step (5 %)
 
   // rate_noise: Params::looming_rate_noise; use_pixels: Params::looming_from_pixels.
   void setParams(double rate_noise, bool use_pixels);

@@ -31,7 +31,8 @@ class ScaleAlignment {
  public:
   static constexpr int kLevels = 2;
   static constexpr int kIterations = 15;       // per level, at most
-  static constexpr double kEpsilon = 1e-4;     // |d ln s| and |dt| / side below this: converged
+  static constexpr double kEpsilon = 1e-4;       // |d ln s| below this ...
+  static constexpr double kShiftEpsilon = 0.01;  // ... and |dt| below this (px): converged
   static constexpr double kHuber = 1.345;      // x the residuals' robust standard deviation
   static constexpr double kMaxLogScale = 0.3;  // a larger fitted change is a failure, not growth
 

@@ -31,7 +31,7 @@ struct Obstacle {
   float peak = 0.0f;              // raw maximum of the correlation response
   float psr = 0.0f;               // peak-to-sidelobe ratio of the response
   TrackState state = TrackState::kSearching;
-  // Looming, from the box-size filter (box_size.h): the expansion rate d ln(sqrt(w*h)) / dt and
+  // Looming (looming.h): the expansion rate d ln(sqrt(w*h)) / dt and
   // the time to contact 1 / expansion_rate, each with its standard deviation.
   double expansion_rate = 0.0;        // 1/s (positive when growing)
   double expansion_rate_sigma = 0.0;  // 1/s
