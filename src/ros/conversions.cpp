@@ -128,6 +128,8 @@ void toMessage(const core::Obstacle& o, obstacle_tracker::Obstacle& msg) {
   msg.bearing.x = msg.bearing.y = msg.bearing.z = 0.0;
   msg.angular_width = 0.0f;
   msg.angular_height = 0.0f;
+  msg.bearing_rate = 0.0f;          // the nodelet fills these from the bearings (collision_course.h)
+  msg.collision_course = false;
   msg.expansion_rate = static_cast<float>(o.expansion_rate);
   msg.expansion_rate_sigma = static_cast<float>(o.expansion_rate_sigma);
   msg.time_to_contact = std::isnan(o.time_to_contact)

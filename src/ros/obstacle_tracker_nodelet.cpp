@@ -142,8 +142,12 @@ void ObstacleTrackerNodelet::onInit() {
   it_.reset(new image_transport::ImageTransport(nh));
   const image_transport::TransportHints hints("raw", ros::TransportHints(), pnh);
   // The callbacks only hand frames to the slot, so these queues hardly ever hold more than one;
-  // room for a burst, so that the slot (not roscpp) decides what is dropped.
-  const std::uint32_t queue = 2;
+  // room for a burst, so that the slot (not roscpp) decides what is dropped. When the callback
+  // thread is not scheduled for a while, roscpp drops the oldest frame (or camera_info, whose
+  // image then never pairs) once `queue` newer ones wait: the same depth as the slot's idle
+  // backlog, so that any frame dropped without an earlier one in processing had that many newer
+  // frames behind it (the delivery rule the rostests check, test/ros/frame_delivery.h).
+  const std::uint32_t queue = bridge::FrameSlot<PendingFrame>::kIdleBacklog;
   if (use_camera_info_) {
     image_filter_.reset(new image_transport::SubscriberFilter(*it_, "image", queue, hints));
     image_filter_->registerCallback(boost::bind(&ObstacleTrackerNodelet::countInput, this, boost::placeholders::_1));
@@ -297,6 +301,7 @@ void ObstacleTrackerNodelet::process(const sensor_msgs::ImageConstPtr& image,
       obstacles_ = pipeline_->process(*frame, stamp);
       processing = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       state = pipeline_->state();
+      collision_.setMaxBearingRate(pipeline_->params().collision_bearing_rate);
     }
     have_last_ = true;
     last_stamp_ = image->header.stamp;
@@ -311,6 +316,7 @@ void ObstacleTrackerNodelet::process(const sensor_msgs::ImageConstPtr& image,
     out->obstacles.resize(obstacles_.size());
     for (std::size_t i = 0; i < obstacles_.size(); ++i) bridge::toMessage(obstacles_[i], out->obstacles[i]);
     if (info) fillGeometry(*image, *info, *out);
+    markCollisionCourse(stamp, *out);
     // The frame is processed once its answer exists: a frame that arrives after the answer (the
     // overlay and statistics below are still being done) is kept, not dropped (frame_slot.h).
     slot_.done();
@@ -401,6 +407,24 @@ void ObstacleTrackerNodelet::fillGeometry(const sensor_msgs::Image& image, const
     o.bearing.z = b.z();
     o.angular_width = static_cast<float>(g.angular_width);
     o.angular_height = static_cast<float>(g.angular_height);
+  }
+}
+
+void ObstacleTrackerNodelet::markCollisionCourse(double stamp, ObstacleArray& out) {
+  course_.resize(out.obstacles.size());
+  for (std::size_t i = 0; i < out.obstacles.size(); ++i) {
+    const Obstacle& o = out.obstacles[i];
+    core::CollisionCourse::Track& t = course_[i];
+    t.id = static_cast<int>(o.id);
+    t.has_bearing = o.has_bearing;
+    t.bearing = cv::Vec3d(o.bearing.x, o.bearing.y, o.bearing.z);
+    t.expansion_rate = o.expansion_rate;
+    t.expansion_rate_sigma = o.expansion_rate_sigma;
+  }
+  collision_.update(stamp, course_);
+  for (std::size_t i = 0; i < out.obstacles.size(); ++i) {
+    out.obstacles[i].bearing_rate = static_cast<float>(course_[i].bearing_rate);
+    out.obstacles[i].collision_course = course_[i].collision_course;
   }
 }
 

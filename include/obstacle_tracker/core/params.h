@@ -38,6 +38,8 @@ namespace core {
     "process noise of the expansion rate in the looming filter (how fast closing may change)")    \
   X(bool, looming_from_pixels, true, false, true, "",                                              \
     "measure the expansion by aligning the object's pixels between frames (else box sizes alone)") \
+  X(double, collision_bearing_rate, 0.05, 0.0, 10.0, "rad/s",                                     \
+    "a closing obstacle whose bearing turns slower than this is on a collision course (needs bearings)") \
   X(double, relative_peak_threshold, 0.4, 0.0, 1.0, "",                                            \
     "also re-detect when the peak falls below this fraction of the track's running mean peak")    \
   X(double, learn_relative_threshold, 0.7, 0.0, 1.0, "",                                           \

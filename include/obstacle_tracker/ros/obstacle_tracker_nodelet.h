@@ -40,6 +40,7 @@
 
 #include "obstacle_tracker/ObstacleArray.h"
 #include "obstacle_tracker/ObstacleTrackerConfig.h"
+#include "obstacle_tracker/core/collision_course.h"
 #include "obstacle_tracker/core/pipeline.h"
 #include "obstacle_tracker/ros/camera_geometry.h"
 #include "obstacle_tracker/ros/frame_slot.h"
@@ -64,6 +65,8 @@ class ObstacleTrackerNodelet : public nodelet::Nodelet {
   void prepareFor(const cv::Mat& frame);  // under pipeline_mutex_
   void process(const sensor_msgs::ImageConstPtr& image, const sensor_msgs::CameraInfoConstPtr& info);
   void fillGeometry(const sensor_msgs::Image& image, const sensor_msgs::CameraInfo& info, ObstacleArray& out);
+  // bearing_rate and collision_course of out's obstacles (core/collision_course.h).
+  void markCollisionCourse(double stamp, ObstacleArray& out);
   void reconfigure(ObstacleTrackerConfig& config, std::uint32_t level);
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
   void diagnosticsTimer(const ros::WallTimerEvent&);
@@ -108,6 +111,8 @@ class ObstacleTrackerNodelet : public nodelet::Nodelet {
   int prepared_type_ = -1;
   bridge::FrameConverter converter_;
   bridge::CameraGeometry camera_;
+  core::CollisionCourse collision_;                     // processing thread only
+  std::vector<core::CollisionCourse::Track> course_;    // reused buffer
   sensor_msgs::CameraInfo last_info_;
   bool have_info_ = false;
   cv::Mat overlay_;
