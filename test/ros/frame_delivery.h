@@ -4,15 +4,15 @@
 // any bar on the machine's speed (used by the accuracy and load rostests):
 //   - every answer carries the stamp of a frame that was sent, and no frame is answered twice;
 //   - frames are answered in the order they were sent;
-//   - a frame is left unanswered only while the tracker was busy with an earlier frame. The
-//     subscription queue holds one image: a frame is replaced only when it arrived while an earlier
-//     frame was being processed, so that earlier frame's answer was published after this frame
-//     was sent. Sent-before-received and published-before-received make the test causal: with
+//   - a frame is left unanswered only while the tracker was busy with an earlier frame: the
+//     FrameSlot replaces a waiting frame only when a newer one arrives while an earlier frame is
+//     being processed, so that earlier frame's answer was published after this frame was sent. Sent-before-received and published-before-received make the test causal: with
 //     s_i the time frame i was published and o_j the time the answer to j reached the test (one
 //     clock, one process), a dropped frame i needs an answered j < i with o_j > s_i;
-//   - or, on a machine that did not schedule the tracker for a while, the frame was the oldest of
-//     a full backlog: the nodelet holds at most `backlog` waiting frames (its subscription queue
-//     and FrameSlot), so at least that many newer frames were sent before the next answer;
+//   - or, on a machine that did not schedule the nodelet's threads for a while, the frame was
+//     pushed out of a full queue: each of the nodelet's queues (the image and camera_info
+//     subscriptions, the FrameSlot's idle backlog) holds `backlog` frames, so at least that many
+//     newer frames were sent before the next answer;
 //   - the newest frame is never dropped: the last frame sent (nothing came after it to replace
 //     it) is answered.
 #pragma once
@@ -49,7 +49,7 @@ struct DeliveryReport {
   }
 };
 
-// backlog: frames the nodelet can hold waiting (0: none, every idle drop is a violation).
+// backlog: depth of each of the nodelet's queues (0: none, every idle drop is a violation).
 inline DeliveryReport checkDelivery(const std::vector<FrameRecord>& frames, int backlog = 0) {
   DeliveryReport r;
   double latest_answer = -INFINITY;  // max o_j over the answered frames before the current one

@@ -32,6 +32,7 @@
 #include <sensor_msgs/Image.h>
 
 #include "../frame_delivery.h"
+#include "obstacle_tracker/ros/frame_slot.h"
 #include "reliability_common.h"
 
 namespace rel = obstacle_tracker::reliability;
@@ -44,10 +45,11 @@ namespace {
 constexpr int kPublisherQueue = 16;
 // Earlier frames that can still be answered after the last one was sent without any backlog in
 // the nodelet: everything that the path's fixed-size queues hold (our publisher's, the nodelet's
-// subscription queue of 2, the FrameSlot's idle backlog of 4, the frame in processing) and a few
-// 2.7 MB frames in the loopback socket. A nodelet that queued instead of dropping would answer
-// the whole backlog: hundreds of frames after a minute at 200 Hz.
-constexpr int kNodeletHeldFrames = 2 + 4 + 1;  // subscription queue, FrameSlot backlog, processing
+// subscription queue and the FrameSlot's idle backlog, kIdleBacklog each, the frame in
+// processing) and a few 2.7 MB frames in the loopback socket. A nodelet that queued instead of
+// dropping would answer the whole backlog: hundreds of frames after a minute at 200 Hz.
+constexpr int kQueueDepth = static_cast<int>(obstacle_tracker::bridge::FrameSlot<int>::kIdleBacklog);
+constexpr int kNodeletHeldFrames = kQueueDepth + kQueueDepth + 1;  // subscription, FrameSlot, processing
 constexpr int kMaxAnsweredAfterEnd = kPublisherQueue + kNodeletHeldFrames + 3;
 
 struct Sample {
@@ -191,8 +193,9 @@ TEST(Load, NewestFrameBoundedMemoryDropsCounted) {
   state->started = false;
 
   std::lock_guard<std::mutex> lock(state->mutex);
-  // The nodelet's waiting frames: the subscription queue and the FrameSlot's idle backlog.
-  const rt::DeliveryReport delivery = rt::checkDelivery(state->frames, kNodeletHeldFrames - 1);
+  // A frame dropped without an earlier one in processing was pushed out of the subscription queue
+  // or the FrameSlot's idle backlog, each kQueueDepth deep.
+  const rt::DeliveryReport delivery = rt::checkDelivery(state->frames, kQueueDepth);
   const double last_sent = state->frames.back().sent;
   int answered_after_end = 0;
   for (std::size_t i = 0; i + 1 < state->frames.size(); ++i) {
