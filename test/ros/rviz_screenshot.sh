@@ -33,9 +33,24 @@ SHOT=$OUT/rviz_overlay.png
 LOG=$OUT/rviz_overlay_roslaunch.log
 rm -f "$SHOT"
 
-"$DEVEL/env.sh" roslaunch -p "$PORT" "$HERE/rviz_overlay.launch" >"$LOG" 2>&1 &
-LAUNCH=$!
+launch() {
+  "$DEVEL/env.sh" roslaunch -p "$PORT" "$HERE/rviz_overlay.launch" >>"$LOG" 2>&1 &
+  LAUNCH=$!
+}
+stop() {
+  kill -INT "$LAUNCH" 2>/dev/null
+  for _ in $(seq 1 20); do kill -0 "$LAUNCH" 2>/dev/null || break; sleep 0.5; done
+  kill -KILL "$LAUNCH" 2>/dev/null
+  wait "$LAUNCH" 2>/dev/null
+}
+: >"$LOG"
+launch
 
+# rviz (Ogre with software GL) sometimes aborts while it starts on a loaded machine, inside its own
+# process ("malloc(): unaligned tcache chunk detected" before it subscribed to anything): that is
+# rviz's crash, not the overlay missing. It is started again, at most twice, and said so; a third
+# crash fails the test.
+restarts=0
 status=1
 green=0
 for attempt in $(seq 1 40); do
@@ -44,17 +59,22 @@ for attempt in $(seq 1 40); do
     echo "roslaunch ended early; log:"; tail -30 "$LOG"
     break
   fi
+  if grep -q "obstacle_tracker_rviz-[0-9]*\] process has died" "$LOG"; then
+    if [ "$restarts" -ge 2 ]; then echo "rviz died $((restarts + 1)) times; log:"; tail -30 "$LOG"; break; fi
+    restarts=$((restarts + 1))
+    echo "rviz died (an abort inside rviz, see $LOG): started again ($restarts of 2)"
+    stop
+    sed -i 's/process has died/process had died (restarted)/' "$LOG"
+    launch
+    continue
+  fi
   /usr/bin/import -window root "$SHOT" 2>/dev/null || continue
   green=$("$DEVEL/lib/obstacle_tracker/tool_count_colour" "$SHOT" 0 255 0 60 || echo 0)
   echo "screenshot $attempt: $green overlay-green pixels"
   # The drawn box: at least a few dozen pixels of its outline after rviz scales the image.
   if [ "$green" -ge 40 ]; then status=0; break; fi
 done
-
-kill -INT "$LAUNCH" 2>/dev/null
-for _ in $(seq 1 20); do kill -0 "$LAUNCH" 2>/dev/null || break; sleep 0.5; done
-kill -KILL "$LAUNCH" 2>/dev/null
-wait "$LAUNCH" 2>/dev/null
+stop
 
 if [ $status -eq 0 ]; then
   echo "PASSED: rviz shows the overlay box ($green green pixels), screenshot $SHOT"
