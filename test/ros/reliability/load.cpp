@@ -82,11 +82,17 @@ struct State {
   int unknown = 0;
   double dropped_total = -1.0;
   double processed_total = -1.0;
+  bool handshake_answered = false;
 };
 State* state = nullptr;
 
 void onOutput(const obstacle_tracker::ObstacleArray::ConstPtr& msg) {
-  if (!state->started) return;
+  if (!state->started) {  // the answer to the handshake frame
+    std::lock_guard<std::mutex> lock(state->mutex);
+    state->handshake_answered = true;
+    state->answered.notify_all();
+    return;
+  }
   const double latency = (ros::Time::now() - msg->header.stamp).toSec();
   const double now = (ros::WallTime::now() - state->start).toSec();
   std::lock_guard<std::mutex> lock(state->mutex);
@@ -149,6 +155,18 @@ TEST(Load, NewestFrameBoundedMemoryDropsCounted) {
   }
   const std::vector<std::uint8_t> background = img.data;
   const int channels = encoding == "bgr8" ? 3 : 1;
+
+  // Handshake: one frame, answered, before the load. The nodelet counts frames lost before its
+  // callback from gaps in the sequence numbers, which needs a frame it received before them: a
+  // loaded machine that did not run its callback thread while the first frames arrived would
+  // otherwise lose them uncounted. This frame is not one of the recorded ones.
+  img.header.stamp = ros::Time::now();
+  pub.publish(img);
+  {
+    std::unique_lock<std::mutex> lock(state->mutex);
+    state->answered.wait_for(lock, std::chrono::seconds(60), [] { return state->handshake_answered; });
+    ASSERT_TRUE(state->handshake_answered) << "the handshake frame was not answered within 60 s";
+  }
 
   std::vector<Sample> rss;  // MiB
   state->start = ros::WallTime::now();
@@ -238,9 +256,18 @@ TEST(Load, NewestFrameBoundedMemoryDropsCounted) {
   const double held_mib = kNodeletHeldFrames * static_cast<double>(img.data.size()) / (1024.0 * 1024.0);
   EXPECT_LT(rss_end - rss_warm, 5.0 + held_mib)
       << "resident set grew by " << rss_end - rss_warm << " MiB (the queues hold " << held_mib << " MiB)";
-  // Whatever this machine's speed, the diagnostics count exactly the frames that went unanswered.
-  EXPECT_EQ(state->dropped_total, static_cast<double>(delivery.dropped))
-      << "diagnostics' dropped frames against the frames sent and never answered";
+  // Whatever this machine's speed, the diagnostics count exactly the frames that were never
+  // processed: the frames sent (and the handshake frame) less those the diagnostics processed.
+  // An answer can still be lost on its way here if this node's callback thread is not scheduled
+  // for longer than the nodelet's publisher queue (200 answers, a second at 200 Hz) lasts: the
+  // nodelet cannot see that, so it is printed and bounded.
+  const double never_processed = static_cast<double>(delivery.sent) + 1.0 - state->processed_total;
+  const double lost_in_transport = static_cast<double>(delivery.dropped) - never_processed;
+  std::printf("load: %.0f answers lost between the nodelet and this node\n", lost_in_transport);
+  EXPECT_EQ(state->dropped_total, never_processed)
+      << "diagnostics' dropped frames against the frames sent and never processed";
+  EXPECT_GE(lost_in_transport, 0.0) << "more frames processed than sent";
+  EXPECT_LE(lost_in_transport, 0.001 * delivery.sent + 5.0) << "answers lost on the way to the subscriber";
   if (delivery.dropped == 0) {
     std::printf("load: the tracker kept up with %.0f Hz: nothing was dropped, the drop rule was not exercised\n", rate);
   }
