@@ -1,8 +1,8 @@
 // Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
 //
 // Multi-frame auto-initialisation (saliency.h, AutoInitializer). One frame's saliency picks the
-// wrong object on real footage (DATA_NOTES.md: on-screen text, sunlit ground, parked aircraft
-// outrank the target), so candidates are followed over the first frames and confirmed by cues
+// wrong object on real footage (on-screen text, sunlit ground, parked aircraft outrank the
+// target), so candidates are followed over the first frames and confirmed by cues
 // that one frame cannot give. Per frame, on the grey image:
 //   1. global motion: phase correlation (Kuglin & Hines 1975; cv::phaseCorrelate) of the frame
 //      against a reference frame (the first one, renewed when the overlap shrinks), both

@@ -65,7 +65,7 @@ void checkBox(const cv::Mat& frame, const cv::Rect2f& box, const char* who) {
     throw std::invalid_argument(std::string(who) + ": box does not overlap the frame");
   }
   // The filter window (box x (1 + padding)) is resampled with int pixel arithmetic: a box
-  // billions of pixels wide overflowed it (test_robust_pipeline, issue 6). A target can be larger
+  // billions of pixels wide overflowed it (test_robust_pipeline). A target can be larger
   // than the frame when very close, but not kMaxBoxToFrame times larger.
   constexpr float kMaxBoxToFrame = 16.0f;
   if (box.width > kMaxBoxToFrame * frame.cols || box.height > kMaxBoxToFrame * frame.rows) {

@@ -1,8 +1,7 @@
 // Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
 //
 // The closed detection-tracking loop of Bharati et al. (T-IV 2018), extended to several
-// obstacles and looming (DESIGN.md "Core contracts", ALGORITHMS.md "Re-detection that does not
-// jump to a distractor", "Looming").
+// obstacles and looming (looming.h, docs/looming.md).
 //
 // Per track, per frame:
 //   tracking     KcfTracker::update. peak >= peak_threshold: the new box is kept. Otherwise the

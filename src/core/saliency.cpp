@@ -14,7 +14,7 @@
 // paper's rule exactly (score = area). In windowed re-detection the mass is
 // multiplied by exp(-d^2 / (2 s^2)), d the distance of the region's box centre from the window
 // centre (the last position) and s half the window's longer side, so that of two similar
-// candidates the one nearer the last position wins (ALGORITHMS.md, re-detection).
+// candidates the one nearer the last position wins.
 #include "obstacle_tracker/core/saliency.h"
 
 #include <algorithm>

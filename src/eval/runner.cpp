@@ -44,7 +44,7 @@ cv::Rect initRect(const cv::Rect2f& box, const cv::Size& size) {
 
 // OpenCV's trackers behind EvalTracker: cv::Tracker (KCF, CSRT, MIL; integer boxes, init
 // returns nothing) and cv::legacy::Tracker (MOSSE, MedianFlow; double boxes, init reports
-// failure). A failed or throwing update keeps the last box (ANCHORS.md's convention).
+// failure). A failed or throwing update keeps the last box.
 template <class TrackerT, class RectT>
 class OpenCvTracker : public EvalTracker {
  public:
