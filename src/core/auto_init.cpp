@@ -4,17 +4,18 @@
 // wrong object on real footage (on-screen text, sunlit ground, parked aircraft outrank the
 // target), so candidates are followed over the first frames and confirmed by cues
 // that one frame cannot give. Per frame, on the grey image:
-//   1. global motion: phase correlation (Kuglin & Hines 1975; cv::phaseCorrelate) of the frame
-//      against a reference frame (the first one, renewed when the overlap shrinks), both
-//      area-shrunk by 4: where the background has moved to since the start. Limitation: over a
-//      textureless sky the target itself can dominate the (whitened) correlation;
+//   1. background motion (background_motion.h: feature tracks and a robust similarity, phase
+//      correlation over featureless sky) from the previous frame, summed at the frame centre:
+//      where the background has moved to since the start; and the overlay mask (overlay_mask.h):
+//      pixels that stay locked to the image while the background moves;
 //   2. candidate map P = local contrast at native resolution (|3x3 mean - 21x21 mean|: keeps
 //      targets of a few pixels that a 300 px saliency map loses) x MBD saliency at half
 //      resolution (suppresses ground, trees and buildings connected to the frame border);
 //      auto_init_local_contrast = false uses the MBD map alone;
 //   3. candidates: peaks of P that are maxima of their 16x16 cell and its 8 neighbours, the best
 //      auto_init_candidates of them; box = the 8-connected pixels >= 0.3 x the peak around it;
-//      regions touching the frame border are dropped when reject_border_regions is set;
+//      regions touching the frame border are dropped when reject_border_regions is set, and
+//      regions with at least kOverlayShare of their pixels on the overlay mask always;
 //   4. candidates are associated with the tracks of earlier frames (nearest predicted position
 //      within a gate); a track is confirmed once seen auto_init_frames times (persistence, at
 //      least 60 % of the frames since it appeared) and, when auto_init_min_motion > 0, once it
@@ -42,6 +43,8 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "obstacle_tracker/core/background_motion.h"
+#include "obstacle_tracker/core/overlay_mask.h"
 #include "obstacle_tracker/core/saliency.h"
 #include "obstacle_tracker/core/segmentation.h"
 
@@ -68,7 +71,7 @@ constexpr int kMinGrowthSamples = 12;  // history points before growth can confi
 constexpr double kMinGrowthFit = 0.6;   // share of the log-size variance the growth line explains
 constexpr double kVacated = 0.5;        // motion cue: contrast at the old place now / then
 constexpr int kLag = 4;                 // frames back for the appearance-change test
-constexpr double kMinChange = 0.5;      // appearance change / local contrast of a moving target  // a candidate's region: pixels >= this share of its peak
+constexpr double kMinChange = 0.5;      // appearance change / local contrast of a moving target
 
 struct Candidate {
   cv::Rect box;
@@ -83,20 +86,25 @@ struct Candidate {
 
 constexpr int kHistory = 32;  // positions kept per track for the motion fit
 
+cv::Point2f apply(const cv::Matx33d& h, cv::Point2f p) {
+  const cv::Vec3d q = h * cv::Vec3d(p.x, p.y, 1.0);
+  return {static_cast<float>(q[0] / q[2]), static_cast<float>(q[1] / q[2])};
+}
+
 struct Track {
-  // Ring buffer of (frame, image position, image position minus background displacement).
+  // Ring buffer of (frame, image position, position in the first frame's background coordinates).
   std::array<int, kHistory> frames;
   std::array<cv::Point2f, kHistory> img, rel;
   std::array<float, kHistory> log_size;  // ln sqrt(size_px): the growth cue's size
   std::array<int, kHistory> contrast;    // local contrast at the position then (vacated test)
   int count = 0;
-  void remember(int frame, cv::Point2f p, cv::Point2d background, int size_px, int local_contrast) {
+  void remember(int frame, cv::Point2f p, const cv::Matx33d& image_to_first, int size_px, int local_contrast) {
     const int k = count % kHistory;
     frames[k] = frame;
     contrast[k] = local_contrast;
     log_size[k] = 0.5f * std::log(static_cast<float>(std::max(1, size_px)));
     img[k] = p;
-    rel[k] = p - cv::Point2f(static_cast<float>(background.x), static_cast<float>(background.y));
+    rel[k] = apply(image_to_first, p);
     ++count;
   }
   cv::Point2f centre, velocity;
@@ -114,10 +122,13 @@ struct AutoInitializer::Impl {
   MbdSaliency mbd;
   SaliencyDetector refiner;
   ExtentGrower extent;
-  MatArena grey_arena, small_arena, half_arena, up_arena, sal_arena, blur_arena, box_arena, contrast_arena,
-      prob_arena;
-  cv::Mat prev_small, cur_small, ref_small, hann;
-  cv::Point2d background{0.0, 0.0}, ref_background{0.0, 0.0};
+  MatArena grey_arena, half_arena, up_arena, sal_arena, blur_arena, box_arena, contrast_arena, prob_arena;
+  BackgroundMotion motion;
+  OverlayMask overlay;
+  cv::Point2d background{0.0, 0.0};
+  // The background's motion since the first frame (first-frame coordinates -> this frame's) and
+  // its inverse.
+  cv::Matx33d first_to_image = cv::Matx33d::eye(), image_to_first = cv::Matx33d::eye();
   cv::Size size;
   int frame_index = 0;
   int horizon = -1;
@@ -127,7 +138,7 @@ struct AutoInitializer::Impl {
   std::vector<uchar> text_flag;
   cv::Mat prev_grey, still, diff;  // persistent: previous grey frame, per-pixel still count
   std::array<cv::Mat, kLag + 1> past;          // grey frames t, t-1, ..., t-kLag (ring)
-  std::array<cv::Point2d, kLag + 1> past_background;
+  std::array<cv::Matx33d, kLag + 1> past_image_to_first;
   cv::Mat contrast_map;                        // last frame's local contrast (CV_8U), for the lag test
   std::vector<Candidate> candidates;
   std::vector<Track> tracks;
@@ -141,10 +152,11 @@ struct AutoInitializer::Impl {
   }
 
   void reset() {
-    prev_small.release();
-    ref_small.release();
+    motion.reset();
+    overlay.reset();
     prev_grey.release();
-    background = ref_background = cv::Point2d(0.0, 0.0);
+    background = cv::Point2d(0.0, 0.0);
+    first_to_image = image_to_first = cv::Matx33d::eye();
     frame_index = 0;
     horizon = -1;
     tracks.clear();
@@ -153,41 +165,22 @@ struct AutoInitializer::Impl {
   }
 
   void globalMotion(const cv::Mat& grey) {
-    if (grey.cols < 64 || grey.rows < 64) return;
-    const int f = 4;
-    cv::Mat small = small_arena.get(grey.rows / f, grey.cols / f, CV_8U);
-    cv::resize(grey(cv::Rect(0, 0, small.cols * f, small.rows * f)), small, small.size(), 0, 0, cv::INTER_AREA);
-    small.convertTo(cur_small, CV_32F);
-    if (hann.size() != cur_small.size()) cv::createHanningWindow(hann, cur_small.size(), CV_32F);
-    // Displacement against a reference frame, not summed frame to frame: the sub-pixel error
-    // of each estimate (~0.1 px at 1/4 scale) would otherwise add up. The reference moves on
-    // when the overlap gets small or the correlation weak.
-    auto plausible = [&](const cv::Point2d& s, double response) {
-      return response > 0.05 && std::abs(s.x) < small.cols / 3.0 && std::abs(s.y) < small.rows / 3.0;
-    };
-    bool reanchor = ref_small.empty() || ref_small.size() != cur_small.size();
-    if (!reanchor) {
-      double response = 0.0;
-      const cv::Point2d s = cv::phaseCorrelate(ref_small, cur_small, hann, &response);
-      if (plausible(s, response)) {
-        background = ref_background + s * static_cast<double>(f);
-        reanchor = std::abs(s.x) > small.cols / 8.0 || std::abs(s.y) > small.rows / 8.0;
-      } else {
-        // Fall back to the previous frame (a scene change or a jerk), then re-anchor.
-        double r2 = 0.0;
-        const cv::Point2d s2 = cv::phaseCorrelate(prev_small, cur_small, hann, &r2);
-        if (plausible(s2, r2)) background += s2 * static_cast<double>(f);
-        reanchor = true;
-      }
+    // The background's motion since the previous frame (background_motion.h), with no corner on
+    // the overlay; the overlay mask learns from the same pair of frames. `background` follows the
+    // frame centre's displacement, summed frame to frame.
+    const BackgroundMotionEstimate& e = motion.update(grey, overlay.mask());
+    if (e.known()) {
+      overlay.update(motion.previousWorkingFrame(), motion.currentWorkingFrame(), motion.workingTransform());
+      background += e.displacementAt(cv::Point2d(0.5 * (grey.cols - 1), 0.5 * (grey.rows - 1)));
+      const cv::Matx23d& a = e.previous_to_current;
+      first_to_image = cv::Matx33d(a(0, 0), a(0, 1), a(0, 2), a(1, 0), a(1, 1), a(1, 2), 0, 0, 1) * first_to_image;
+      image_to_first = first_to_image.inv();
     }
-    if (reanchor) {
-      cur_small.copyTo(ref_small);
-      ref_background = background;
-    }
-    std::swap(prev_small, cur_small);
     if (params.auto_init_horizon_prior) {
       // Row means of the shrunk frame; the horizon is the strongest step (over 4 rows) in the
       // middle 80 %, if it is at least 12 grey levels.
+      const cv::Mat& small = motion.currentWorkingFrame();
+      const double rows_per_row = static_cast<double>(grey.rows) / small.rows;
       horizon = -1;
       float best = 12.0f;
       const int rows = small.rows;
@@ -196,10 +189,24 @@ struct AutoInitializer::Impl {
         const float b = static_cast<float>(cv::mean(small.rowRange(r, r + 2))[0]);
         if (std::abs(a - b) > best) {
           best = std::abs(a - b);
-          horizon = r * f;
+          horizon = static_cast<int>(r * rows_per_row);
         }
       }
     }
+  }
+
+  // Share of a region's pixels (full-resolution indices y * cols + x) on the overlay mask.
+  double overlayShare(const std::vector<int>& pixels, int cols) const {
+    const cv::Mat& mask = overlay.mask();
+    if (mask.empty() || pixels.empty()) return 0.0;
+    const cv::Point2d s = motion.workingScale();
+    int on = 0;
+    for (const int q : pixels) {
+      const int x = std::min(mask.cols - 1, static_cast<int>(s.x * (q % cols)));
+      const int y = std::min(mask.rows - 1, static_cast<int>(s.y * (q / cols)));
+      on += mask.ptr<uchar>(y)[x] != 0;
+    }
+    return static_cast<double>(on) / pixels.size();
   }
 
   // Per-pixel count of consecutive frames without change (saturating at 255).
@@ -401,6 +408,8 @@ struct AutoInitializer::Impl {
       // Size: the grown core of a target of a few pixels (or of a thin silhouette) is smaller than
       // the target, so the object pixels (size_px) count too.
       if (std::max(c.box.area(), c.size_px) < params.min_object_area || c.area > max_area) continue;
+      // Most of its pixels locked to the image: part of the on-screen display (overlay_mask.h).
+      if (overlayShare(queue, cols) >= AutoInitializer::kOverlayShare) continue;
       if (params.auto_init_reject_static && frame_index > 0) {
         // Share of the box's pixels, or of the region's own pixels, unchanged for kStillFrames
         // frames: an overlay (or a static scene under a still camera). A moving target changes
@@ -487,7 +496,7 @@ struct AutoInitializer::Impl {
         tr.last_mean = c.mean;
         tr.touches_border = c.touches_border;
         tr.still = c.still;
-        tr.remember(frame_index, c.centre, background, c.size_px, contrastAround(c.centre));
+        tr.remember(frame_index, c.centre, image_to_first, c.size_px, contrastAround(c.centre));
       } else if (tracks.size() < kMaxTracks) {
         Track tr;
         tr.centre = c.centre;
@@ -500,7 +509,7 @@ struct AutoInitializer::Impl {
         tr.last_mean = c.mean;
         tr.touches_border = c.touches_border;
         tr.still = c.still;
-        tr.remember(frame_index, c.centre, background, c.size_px, contrastAround(c.centre));
+        tr.remember(frame_index, c.centre, image_to_first, c.size_px, contrastAround(c.centre));
         tracks.push_back(tr);
       }
     }
@@ -519,7 +528,11 @@ struct AutoInitializer::Impl {
     if (frame_index < kLag || contrast_map.empty()) return true;  // too early to tell
     const cv::Mat& now = past[static_cast<size_t>(frame_index % (kLag + 1))];
     const cv::Mat& then = past[static_cast<size_t>((frame_index - kLag) % (kLag + 1))];
-    const cv::Point2d shift = background - past_background[static_cast<size_t>((frame_index - kLag) % (kLag + 1))];
+    // Where the background at the box's centre was kLag frames ago, as a shift.
+    const cv::Point2f centre(box.x + 0.5f * box.width, box.y + 0.5f * box.height);
+    const cv::Matx33d then_to_now =
+        first_to_image * past_image_to_first[static_cast<size_t>((frame_index - kLag) % (kLag + 1))];
+    const cv::Point2d shift = cv::Point2d(centre) - cv::Point2d(apply(then_to_now.inv(), centre));
     const cv::Rect frame_rect(0, 0, now.cols, now.rows);
     const cv::Rect a = cv::Rect(box.x - 2, box.y - 2, box.width + 4, box.height + 4) & frame_rect;
     const cv::Point d(static_cast<int>(std::lround(shift.x)), static_cast<int>(std::lround(shift.y)));
@@ -562,8 +575,7 @@ struct AutoInitializer::Impl {
     const int n = std::min(t.count, kHistory);
     if (n < 2 || contrast_map.empty()) return true;
     const size_t oldest = static_cast<size_t>(t.count <= kHistory ? 0 : t.count % kHistory);
-    const cv::Point2f bg(static_cast<float>(background.x), static_cast<float>(background.y));
-    const int now = contrastAround(t.rel[oldest] + bg);
+    const int now = contrastAround(apply(first_to_image, t.rel[oldest]));
     if (now < 0 || t.contrast[oldest] <= 0) return true;  // its old place has left the frame
     return now < kVacated * t.contrast[oldest];
   }
@@ -757,7 +769,7 @@ const std::vector<SalientRegion>& AutoInitializer::update(const cv::Mat& frame, 
   {
     cv::Mat& slot = m.past[static_cast<size_t>(m.frame_index % (kLag + 1))];
     grey.copyTo(slot);  // allocates once per frame size
-    m.past_background[static_cast<size_t>(m.frame_index % (kLag + 1))] = m.background;
+    m.past_image_to_first[static_cast<size_t>(m.frame_index % (kLag + 1))] = m.image_to_first;
   }
   const cv::Mat p = m.candidateMap(grey);
   m.findCandidates(p);
@@ -773,6 +785,14 @@ double AutoInitializer::stillShare(const cv::Rect2f& box) const {
   const cv::Rect r = cv::Rect(box) & cv::Rect(0, 0, still.cols, still.rows);
   if (r.area() <= 0) return 0.0;
   return static_cast<double>(impl_->stillPixels(r)) / r.area();
+}
+
+double AutoInitializer::overlayShare(const cv::Rect2f& box) const {
+  const cv::Point2d s = impl_->motion.workingScale();
+  const cv::Rect working(cv::Point(static_cast<int>(box.x * s.x), static_cast<int>(box.y * s.y)),
+                         cv::Point(static_cast<int>(std::ceil((box.x + box.width) * s.x)),
+                                   static_cast<int>(std::ceil((box.y + box.height) * s.y))));
+  return impl_->overlay.share(working);
 }
 
 const std::vector<SalientRegion>& AutoInitializer::candidates() const { return impl_->raw; }

@@ -577,7 +577,7 @@ struct Pipeline::Impl {
   // neither moves nor grows much at first, is not given up for a candidate that has not proved
   // more (an auto-started obstacle that hovers in a still view never verifies and would give way
   // to a mover). While a track is unverified the AutoInitializer costs what it costs while
-  // searching (and allocates as it does: cv::phaseCorrelate's buffers).
+  // searching (and allocates as it does: the feature tracks of background_motion.h).
   void verify(Track& t) {
     if (t.verified || t.state == TrackState::kLost) return;
     if (params.auto_init_verify_frames <= 0 || params.auto_init_min_motion <= 0.0) {
@@ -585,6 +585,8 @@ struct Pipeline::Impl {
       return;
     }
     ++t.watched;
+    // On the camera's on-screen display: never an obstacle, however it seems to move.
+    if (autoinit.overlayShare(t.box) >= AutoInitializer::kOverlayShare) return;
     const cv::Point2d bg_d = autoinit.backgroundMotion() - t.start_background;
     const cv::Point2f bg(static_cast<float>(bg_d.x), static_cast<float>(bg_d.y));
     const cv::Point2f in_image = centre(t.box) - t.start_centre;

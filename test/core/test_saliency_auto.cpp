@@ -11,6 +11,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "obstacle_tracker/core/pipeline.h"
 #include "obstacle_tracker/core/saliency.h"
 
 namespace oc = obstacle_tracker::core;
@@ -43,17 +44,16 @@ cv::Mat makeFrame(const cv::Mat& sky, cv::Point2f pan, cv::Point2f target, cv::R
 cv::Mat makeSky(cv::RNG& rng) {
   cv::Mat sky(512 + 128, 640 + 128, CV_32F);
   rng.fill(sky, cv::RNG::NORMAL, 0.0, 1.0);
-  // Clouds with texture at several scales (phase correlation needs some background texture;
-  // over a textureless sky the target would dominate the global-motion estimate, see
-  // auto_init.cpp).
+  // Clouds with texture at several scales (the background-motion estimate needs some texture;
+  // over a textureless sky the motion is unknown, see background_motion.h).
   cv::Mat fine = sky.clone();
   cv::GaussianBlur(sky, sky, cv::Size(0, 0), 8.0);
   cv::GaussianBlur(fine, fine, cv::Size(0, 0), 2.0);
   cv::normalize(sky, sky, 20, 70, cv::NORM_MINMAX);
   cv::normalize(fine, fine, 0, 25, cv::NORM_MINMAX);
   sky += fine;
-  // Textured ground band (trees) touching the bottom border: the background that global motion
-  // locks on (over a textureless sky the target itself would dominate the phase correlation).
+  // Textured ground band (trees) touching the bottom border: background the motion estimate can
+  // follow.
   cv::Mat ground(sky.rows - (64 + 400), sky.cols, CV_32F);
   rng.fill(ground, cv::RNG::NORMAL, 150.0, 30.0);
   cv::GaussianBlur(ground, ground, cv::Size(0, 0), 1.5);
@@ -148,6 +148,60 @@ TEST(AutoInit, BackgroundMotionFollowsThePan) {
   EXPECT_NEAR(init.backgroundMotion().y, -9.0, 2.0);
   init.reset();
   EXPECT_EQ(init.backgroundMotion().x, 0.0);
+}
+
+// The failure seen on unseen anti-drone footage: a reticle arm (a long thin dark line locked to
+// the image) "moves against the background" under a slow pan with a little tilt, and a loop
+// that does not know about overlays confirmed it and held it at confidence 1. With the overlay
+// mask (overlay_mask.h) the display's lines stop being candidates once the camera has moved a
+// little (without it they stay candidates throughout), no obstacle with confidence >= 0.5 is
+// ever reported on the display, and
+// the first track starts on the target that enters later (this faint 13 x 7 px target over a
+// textured sky is then lost by the filter, unverified, which is not this test's subject).
+TEST(AutoInit, AReticleUnderASlowPanIsNeverAConfidentObstacle) {
+  cv::RNG rng(31);
+  const cv::Mat sky = makeSky(rng);
+  oc::Pipeline pipeline;
+  oc::AutoInitializer init;
+  const cv::Rect left_arm(170, 255, 100, 3), right_arm(370, 255, 100, 3), bracket(40, 40, 50, 3);
+  int confident_on_display = 0, candidates_on_display = 0;
+  float first_error = -1.0f;
+  for (int i = 0; i < 150; ++i) {
+    // A slow pan with a little tilt and a hand's jitter.
+    const cv::Point2f pan(0.7f * i + 0.6f * std::sin(0.7f * i), 0.25f * i + 0.5f * std::cos(1.1f * i));
+    // The target flies in from the right after two seconds.
+    const cv::Point2f target = i < 50 ? cv::Point2f(-50.0f, -50.0f) : cv::Point2f(560.0f - 2.5f * (i - 50), 150.0f);
+    cv::Rect2f truth;
+    cv::Mat frame = makeFrame(sky, pan, target, &truth);
+    for (const cv::Rect& r : {left_arm, right_arm, bracket}) {
+      cv::rectangle(frame, r, cv::Scalar(r == right_arm ? 235 : 20), cv::FILLED);
+    }
+    // Sensor noise and re-encoding change every pixel, the display's too, by a few grey levels
+    // from frame to frame, so the still-pixel cue does not see the display.
+    cv::Mat noise(frame.size(), CV_16S);
+    rng.fill(noise, cv::RNG::NORMAL, 0.0, 3.0);
+    cv::add(frame, noise, frame, cv::noArray(), CV_8U);
+    // Candidates on the display: present until the mask has formed (a few frames of pan).
+    init.update(frame, i / 25.0);
+    for (const oc::SalientRegion& c : init.candidates()) {
+      const cv::Rect box(c.box);
+      if (i >= 20 && ((box & left_arm).area() > 0 || (box & right_arm).area() > 0 || (box & bracket).area() > 0)) {
+        ++candidates_on_display;
+      }
+    }
+    for (const oc::Obstacle& o : pipeline.process(frame, i / 25.0)) {
+      if (first_error < 0.0f) first_error = centreError(o.box, truth);
+      if (o.confidence < 0.5f) continue;
+      const cv::Rect box(o.box);
+      if ((box & left_arm).area() > 0 || (box & right_arm).area() > 0 || (box & bracket).area() > 0) {
+        ++confident_on_display;
+      }
+    }
+  }
+  EXPECT_EQ(confident_on_display, 0);
+  EXPECT_EQ(candidates_on_display, 0);
+  EXPECT_GE(first_error, 0.0f);
+  EXPECT_LE(first_error, 20.0f);
 }
 
 TEST(AutoInit, SingleFrameModeReturnsCandidatesAtOnce) {

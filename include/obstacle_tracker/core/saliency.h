@@ -61,6 +61,9 @@ class SaliencyDetector {
 // the multi-frame cues (full-frame coordinates, best first), empty while nothing is confirmed.
 class AutoInitializer {
  public:
+  // A candidate or track with this share of its pixels on the overlay mask is part of the overlay.
+  static constexpr double kOverlayShare = 0.5;
+
   explicit AutoInitializer(const Params& params = Params());
   ~AutoInitializer();
   AutoInitializer(const AutoInitializer&) = delete;
@@ -78,6 +81,9 @@ class AutoInitializer {
   // Share of the box's pixels unchanged (within 3 grey levels) for the last 3 frames: an
   // overlay, or a scene under a still camera. 0 when unknown (auto_init_reject_static off).
   double stillShare(const cv::Rect2f& box) const;
+  // Share of the box on the overlay mask (overlay_mask.h): pixels locked to the image while the
+  // background moves, the camera's on-screen display. 0 before the camera has moved.
+  double overlayShare(const cv::Rect2f& box) const;
 
  private:
   struct Impl;
