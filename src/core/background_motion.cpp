@@ -22,6 +22,7 @@ constexpr int kGridRows = 4;
 constexpr int kRansacIterations = 500;  // enough for 4 DOF at 50 % outliers many times over
 constexpr double kRansacConfidence = 0.995;
 constexpr int kRefineIterations = 10;   // Levenberg-Marquardt steps on the inliers
+constexpr int kRefitPasses = 2;         // tight refits after RANSAC
 constexpr int kFlowIterations = 20;
 constexpr double kFlowEpsilon = 0.02;   // working px
 constexpr double kPhaseSupport = 0.2;   // net share of pixels a phase-correlation shift must explain better
@@ -36,7 +37,8 @@ cv::Point2d BackgroundMotionEstimate::displacementAt(const cv::Point2d& p) const
 BackgroundMotion::BackgroundMotion(const BackgroundMotionSettings& settings) : settings_(settings) {
   if (settings_.working_width < kMinWorkingSide || settings_.max_features < settings_.min_tracks ||
       settings_.min_tracks < 3 || settings_.flow_window < 5 || settings_.flow_levels < 0 ||
-      !(settings_.max_forward_backward_error > 0.0) || !(settings_.ransac_threshold > 0.0)) {
+      !(settings_.max_forward_backward_error > 0.0) || !(settings_.ransac_threshold > 0.0) ||
+      !(settings_.refine_threshold > 0.0)) {
     throw std::invalid_argument("BackgroundMotionSettings: out of range");
   }
 }
@@ -175,9 +177,35 @@ bool BackgroundMotion::fromFeatures(const cv::Mat& excluded) {
   }
   cv::Matx23d a;
   fitted.convertTo(cv::Mat(2, 3, CV_64F, a.val), CV_64F);
-  estimate_.previous_to_current = changeCoordinates(a, scale_, false);
+  estimate_.previous_to_current = changeCoordinates(refitOnTightInliers(a), scale_, false);
   estimate_.source = BackgroundMotionEstimate::Source::kFeatures;
   return true;
+}
+
+cv::Matx23d BackgroundMotion::refitOnTightInliers(const cv::Matx23d& fitted) {
+  cv::Matx23d a = fitted;
+  const double tight2 = settings_.refine_threshold * settings_.refine_threshold;
+  for (int pass = 0; pass < kRefitPasses; ++pass) {
+    tight_from_.clear();
+    tight_to_.clear();
+    for (size_t i = 0; i < from_.size(); ++i) {
+      const cv::Point2f& p = from_[i];
+      const double dx = a(0, 0) * p.x + a(0, 1) * p.y + a(0, 2) - to_[i].x;
+      const double dy = a(1, 0) * p.x + a(1, 1) * p.y + a(1, 2) - to_[i].y;
+      if (dx * dx + dy * dy > tight2) continue;
+      tight_from_.push_back(p);
+      tight_to_.push_back(to_[i]);
+    }
+    if (static_cast<int>(tight_from_.size()) < settings_.min_tracks) break;
+    // Every selected track is an inlier at this threshold, so this is the least-squares fit
+    // (Levenberg-Marquardt) over them.
+    const cv::Mat refit = cv::estimateAffinePartial2D(tight_from_, tight_to_, cv::noArray(), cv::RANSAC,
+                                                      4.0 * settings_.refine_threshold, kRansacIterations,
+                                                      kRansacConfidence, kRefineIterations);
+    if (refit.empty()) break;
+    refit.convertTo(cv::Mat(2, 3, CV_64F, a.val), CV_64F);
+  }
+  return a;
 }
 
 bool BackgroundMotion::fromPhaseCorrelation() {

@@ -149,6 +149,29 @@ TEST(BackgroundMotion, ExcludedPixelsCarryNoTrack) {
   EXPECT_GT(plain_error, 1.0);  // without the mask, the grid (locked to the image) wins
 }
 
+TEST(BackgroundMotion, ASlowPanIsNotPulledTowardsStillText) {
+  // On-screen text rows (still in the image) over a world panned by 1 x 0.5 px: the text's corners
+  // are near the background's motion at such a pan, and must not be taken in with it.
+  const cv::Size size(640, 512);
+  const cv::Mat world = texturedScene(cv::Size(800, 600), 13);
+  BackgroundMotion motion;
+  cv::Point2d sum(0.0, 0.0);
+  for (int i = 0; i < 20; ++i) {
+    cv::Mat frame;
+    cv::warpAffine(world, frame, cv::Matx23d(1, 0, -50.0 - 1.0 * i, 0, 1, -40.0 - 0.5 * i), size);
+    cv::putText(frame, "2026-11-22 12:00:00 AZ 17.11 EL 3.60", cv::Point(12, 30), cv::FONT_HERSHEY_SIMPLEX, 0.8,
+                cv::Scalar(255), 2);
+    cv::putText(frame, "FOV 1.24  ZOOM 4x", cv::Point(12, 480), cv::FONT_HERSHEY_SIMPLEX, 0.8, cv::Scalar(255), 2);
+    const BackgroundMotionEstimate& e = motion.update(frame);
+    if (i > 0) {
+      ASSERT_TRUE(e.known());
+      sum += e.displacementAt(cv::Point2d(319.5, 255.5));
+    }
+  }
+  EXPECT_NEAR(sum.x, -19.0, 0.5);  // the world's content moves left and up in the image
+  EXPECT_NEAR(sum.y, -9.5, 0.5);
+}
+
 TEST(BackgroundMotion, FeaturelessSkyFallsBackToPhaseCorrelation) {
   const cv::Size size(640, 480);
   // A sky gradient with faint, very smooth clouds: no corner Lucas-Kanade can follow.

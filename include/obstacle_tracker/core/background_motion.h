@@ -17,9 +17,14 @@
 //      frame and back; a track whose round trip misses its start by more than
 //      max_forward_backward_error is dropped (Kalal et al., ICPR 2010: the forward-backward error
 //      flags occlusions and drift).
-//   4. A similarity fitted robustly (cv::estimateAffinePartial2D, RANSAC, then refined on the
-//      inliers): the background is the motion most tracks agree on; movers and the target are
-//      outliers. Quality = inliers / consistent tracks.
+//   4. A similarity fitted robustly (cv::estimateAffinePartial2D, RANSAC): the background is the
+//      motion most tracks agree on; movers and the target are outliers. Quality = inliers /
+//      consistent tracks. Then refitted, twice, on the tracks within refine_threshold of the
+//      current fit only: under a slow pan, points that do not move at all (on-screen text
+//      before the overlay mask has it) lie within RANSAC's threshold of the background's motion,
+//      and a fit to all of RANSAC's inliers is pulled towards zero (a 1 px-per-frame pan read
+//      0.85 px); the tight refit leaves them out. (A tight RANSAC threshold alone would not do:
+//      a pan slower than the threshold can never be told from still points by it.)
 //   Fallback over featureless sky (fewer than min_tracks consistent tracks, or no motion that
 //   min_inlier_share of them agree on: sensor noise gives corners without a motion): phase correlation of
 //   the two shrunk frames (Kuglin & Hines 1975, cv::phaseCorrelate), a translation only, with its
@@ -45,6 +50,7 @@ struct BackgroundMotionSettings {
   int flow_levels = 2;                      // pyramid levels above the base (motion up to ~30 working px)
   double max_forward_backward_error = 0.5;  // working px
   double ransac_threshold = 1.0;            // working px, reprojection error of an inlier
+  double refine_threshold = 0.2;            // working px, of the tracks the final fit uses
   int min_tracks = 12;                      // consistent tracks (and inliers) the feature estimate needs
   double min_inlier_share = 0.5;            // of the consistent tracks; fewer: no agreed motion
   double min_phase_response = 0.2;          // phase correlation's fallback needs this peak
@@ -90,12 +96,13 @@ class BackgroundMotion {
  private:
   bool fromFeatures(const cv::Mat& excluded);
   bool fromPhaseCorrelation();
+  cv::Matx23d refitOnTightInliers(const cv::Matx23d& fitted);
 
   BackgroundMotionSettings settings_;
   BackgroundMotionEstimate estimate_;
   cv::Mat previous_, current_, hann_, previous_float_, current_float_, corner_mask_, shifted_, moved_error_,
       still_error_, gain_;
-  std::vector<cv::Point2f> corners_, cell_corners_, kept_, forward_, backward_, from_, to_;
+  std::vector<cv::Point2f> corners_, cell_corners_, kept_, forward_, backward_, from_, to_, tight_from_, tight_to_;
   std::vector<int> cell_count_;
   std::vector<unsigned char> forward_status_, backward_status_, inlier_flags_;
   std::vector<float> flow_error_;
