@@ -75,7 +75,8 @@ class AutoInitializer {
 
   // Added (not part of the contract): the last frame's raw candidates (best peak first, score =
   // peak of the candidate map in [0, 1]) and the accumulated background displacement in pixels
-  // (where the scene content of the first frame has moved to), for tools and tests.
+  // (the frame centre's displacement summed over the frames: where the scene content at the
+  // centre has moved to since the first frame), for tools and tests.
   const std::vector<SalientRegion>& candidates() const;
   cv::Point2d backgroundMotion() const;
   // Share of the box's pixels unchanged (within 3 grey levels) for the last 3 frames: an
