@@ -3,7 +3,7 @@
 // memory_probe [--frames N] [--size WxH] [--scenario NAME] [--seed N] [--warmup N]
 //              [--start K] [--budget-mib M]
 //
-// Measures the memory of core::Pipeline with three tracks (issue 3: "no allocation per frame once
+// Measures the memory of core::Pipeline with three tracks (the promise: "no allocation per frame once
 // a track exists; the core's resident memory with three tracks on 1280x720 frames under 30 MiB").
 // A generated scene (default "multi": three obstacles whose paths cross) is rendered into memory
 // first and the generator destroyed, so that its memory is not counted; then a Pipeline with
@@ -220,7 +220,7 @@ const char* kUsage =
     "  --warmup N      frames after the start before allocations are counted (default 30)\n"
     "  --start K       start K of the three tracks from the ground truth (default 3; fewer leaves the\n"
     "                  others to auto-initialisation, which then searches every frame)\n"
-    "  --budget-mib M  core heap budget in MiB (default 30, issue 3)\n";
+    "  --budget-mib M  core heap budget in MiB (default 30)\n";
 
 struct UsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
