@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "obstacle_tracker/core/grey_histogram.h"
 #include "obstacle_tracker/core/segmentation.h"
 
 namespace obstacle_tracker {
@@ -24,19 +25,6 @@ constexpr int kMinLevel = 2;         // grey levels: the object's contrast is at
 constexpr float kMaxGrowth = 4.0f;   // the grown box covers at most this x the core's area
 constexpr double kMadToSigma = 1.4826;
 constexpr double kCorePercentile = 0.9;
-
-using Histogram = std::array<int, 256>;
-
-// Smallest level v with more than `share` of the histogram's count at or below it.
-int quantile(const Histogram& h, int count, double share) {
-  const double target = share * count;
-  int acc = 0;
-  for (int v = 0; v < 256; ++v) {
-    acc += h[static_cast<std::size_t>(v)];
-    if (acc > target) return v;
-  }
-  return 255;
-}
 
 bool inRing(int x, int y, int w, int h) { return x < kRing || y < kRing || x >= w - kRing || y >= h - kRing; }
 
@@ -71,7 +59,7 @@ cv::Rect2f ExtentGrower::grow(const cv::Mat& frame, const cv::Rect2f& core, doub
   std::array<int, 3> bg{0, 0, 0};
   int ring_count = 0;
   {
-    std::array<Histogram, 3> hist{};
+    std::array<GreyHistogram, 3> hist{};
     for (int y = 0; y < h; ++y) {
       const uchar* row = win.ptr<uchar>(y);
       for (int x = 0; x < w; ++x) {
@@ -83,12 +71,15 @@ cv::Rect2f ExtentGrower::grow(const cv::Mat& frame, const cv::Rect2f& core, doub
         ++ring_count;
       }
     }
-    for (int ch = 0; ch < channels; ++ch) bg[static_cast<std::size_t>(ch)] = quantile(hist[static_cast<std::size_t>(ch)], ring_count, 0.5);
+    for (int ch = 0; ch < channels; ++ch) {
+      const auto c = static_cast<std::size_t>(ch);
+      bg[c] = histogramQuantile(hist[c], ring_count, 0.5);
+    }
   }
 
   // Contrast image, its noise on the ring and its level in the core.
   cv::Mat c = contrast_arena_.get(h, w, CV_8U);
-  Histogram ring_hist{}, core_hist{};
+  GreyHistogram ring_hist{}, core_hist{};
   for (int y = 0; y < h; ++y) {
     const uchar* row = win.ptr<uchar>(y);
     uchar* out = c.ptr<uchar>(y);
@@ -102,8 +93,8 @@ cv::Rect2f ExtentGrower::grow(const cv::Mat& frame, const cv::Rect2f& core, doub
       else if (x >= cx0 && x < cx1 && y >= cy0 && y < cy1) ++core_hist[static_cast<std::size_t>(v)];
     }
   }
-  const double noise = kMadToSigma * quantile(ring_hist, ring_count, 0.5);
-  const int peak = quantile(core_hist, (cx1 - cx0) * (cy1 - cy0), kCorePercentile);
+  const double noise = kMadToSigma * histogramQuantile(ring_hist, ring_count, 0.5);
+  const int peak = histogramQuantile(core_hist, (cx1 - cx0) * (cy1 - cy0), kCorePercentile);
   const double level = std::max({share * peak, kNoiseSigmas * noise, static_cast<double>(kMinLevel)});
   if (peak <= level) return core;  // the core does not stand out of the background
   const int threshold = static_cast<int>(std::floor(level));  // object: c > threshold
