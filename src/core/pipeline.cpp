@@ -45,6 +45,7 @@
 #include "obstacle_tracker/core/looming.h"
 #include "obstacle_tracker/core/saliency.h"
 #include "obstacle_tracker/core/segmentation.h"
+#include "obstacle_tracker/core/target_contrast.h"
 #include "obstacle_tracker/core/warmup.h"
 
 namespace obstacle_tracker {
@@ -143,6 +144,7 @@ struct Pipeline::Impl {
     float max_image_motion = 0.0f;
     // A challenger (search()): tracked but not reported until it replaces an unverified track.
     bool probation = false;
+    float contrast_ref = 0.0f;  // TargetContrast of the box the filter (re)started on
   };
 
   struct Candidate {
@@ -168,6 +170,7 @@ struct Pipeline::Impl {
   SaliencyDetector saliency;
   AutoInitializer autoinit;
   ExtentGrower extent;
+  TargetContrast contrast;
   std::vector<std::unique_ptr<Track>> tracks;
   std::vector<std::unique_ptr<Track>> pool;  // ended tracks, reused (their filter buffers too)
   std::vector<Obstacle> out;
@@ -275,6 +278,7 @@ struct Pipeline::Impl {
     t->learn_gate = -1.0f;
     t->learning = true;
     t->looming.start(frame, stamp, box);
+    t->contrast_ref = contrast.measure(frame, box);
     t->verified = true;
     t->watched = 0;
     t->probation = false;
@@ -426,6 +430,7 @@ struct Pipeline::Impl {
     }
     if (!usableBox(box, frame_size)) return false;
     t.kcf.init(frame, box);
+    t.contrast_ref = contrast.measure(frame, box);
     t.looming.restart(frame, stamp, box);
     t.result = best_result;
     t.result.box = box;
@@ -504,6 +509,11 @@ struct Pipeline::Impl {
       updateRefs(t, r);
       t.looming.track(frame, stamp, r.box);
       acceptGood(t, r.box, stamp);
+      // A peak on a box that no longer holds the contrasted object it started on is the filter
+      // following the background (target_contrast.h): reported as no better than re-detecting.
+      if (TargetContrast::lost(t.contrast_ref, contrast.measure(frame, r.box))) {
+        t.result.confidence = std::min(t.result.confidence, static_cast<float>(params.learn_threshold));
+      }
       return;
     }
     t.state = TrackState::kRedetecting;
