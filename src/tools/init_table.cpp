@@ -28,6 +28,7 @@
 
 #include "obstacle_tracker/core/saliency.h"
 #include "obstacle_tracker/core/segmentation.h"
+#include "obstacle_tracker/eval/metrics.h"
 
 namespace oc = obstacle_tracker::core;
 
@@ -84,13 +85,10 @@ std::vector<Sequence> listSequences(const std::string& root) {
   return seqs;
 }
 
-float iou(const cv::Rect2f& a, const cv::Rect2f& b) {
-  const float inter = (a & b).area();
-  const float uni = a.area() + b.area() - inter;
-  return uni > 0 ? inter / uni : 0.0f;
-}
+// The evaluation's own measures (metrics.h), as float for the tables.
+float iou(const cv::Rect2f& a, const cv::Rect2f& b) { return static_cast<float>(obstacle_tracker::eval::iou(a, b)); }
 float centreError(const cv::Rect2f& a, const cv::Rect2f& b) {
-  return std::hypot(a.x + a.width / 2 - b.x - b.width / 2, a.y + a.height / 2 - b.y - b.height / 2);
+  return static_cast<float>(obstacle_tracker::eval::centreError(a, b));
 }
 
 bool isFlying(const std::string& n) { return n.rfind("antiuav", 0) == 0 || n.rfind("lasot_airplane", 0) == 0; }

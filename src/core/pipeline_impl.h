@@ -1,0 +1,239 @@
+// Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
+//
+// Pipeline::Impl, shared by pipeline.cpp (frame bookkeeping, track start, report),
+// pipeline_tracking.cpp (a track's frame: filter, re-detection) and pipeline_search.cpp
+// (auto-initialisation, verification of auto-started tracks, merges). Private to the core.
+//
+// The closed detection-tracking loop of Bharati et al. (T-IV 2018), extended to several
+// obstacles and looming (looming.h, docs/looming.md).
+//
+// Per track, per frame:
+//   tracking     KcfTracker::update. peak >= peak_threshold: the new box is kept. Otherwise the
+//                track re-detects in the same frame.
+//   re-detecting the filter's own answer (update without learning) counts when its peak passes the
+//                re-detection test; otherwise the candidates are the salient
+//                regions inside search_window_scale x the box around the prediction (constant
+//                velocity since the last good frame); each gets a prior from its saliency, its
+//                distance to the prediction and its size/aspect against the last box; the best
+//                few are verified by correlating the filter model at them (KcfTracker::evaluate,
+//                no state change) and the best verified one whose peak >= redetect_min_peak is
+//                accepted: the filter restarts (init) on its box, so the box takes the object's
+//                current size and shape. After a failed frame, a candidate alone in the window
+//                (high prior, no rival) is accepted at redetect_solo_peak x the peak threshold
+//                (the target's surroundings changed under the model). A frame without an
+//                accepted candidate is a failure; more than max_redetect_failures consecutive failures end the track (reported once
+//                with state kLost, then removed).
+//   searching    while there is room for a track, AutoInitializer is fed every
+//                detection_interval frames; confirmed candidates that do not overlap a track
+//                become tracks. An auto-started track is verified (verify()): until it has moved
+//                like an obstacle, the AutoInitializer keeps running beside it and a candidate it
+//                confirms elsewhere is tracked unreported as a challenger, which replaces the
+//                track if it passes the same test first (auto_init_verify_frames).
+// Boxes from saliency (auto-initialisation and re-detection) are grown from the region's bright
+// core to the object's visible extent (ExtentGrower, extent_contrast).
+// With max_obstacles > 1: tracks overlapping by more than merge_iou are merged (the older one
+// stays), and in a re-detection a second well-separated salient region that verifies poorly
+// against the model (a split) starts a new track when there is room.
+//
+// Reported confidence = KcfResult::confidence (mapping in kcf.h) of the frame's final answer.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <vector>
+
+#include "obstacle_tracker/core/box_geometry.h"
+#include "obstacle_tracker/core/kcf.h"
+#include "obstacle_tracker/core/looming.h"
+#include "obstacle_tracker/core/pipeline.h"
+#include "obstacle_tracker/core/saliency.h"
+#include "obstacle_tracker/core/segmentation.h"
+#include "obstacle_tracker/core/target_contrast.h"
+
+namespace obstacle_tracker {
+namespace core {
+namespace pipeline_detail {
+
+constexpr float kVelocitySmoothing = 0.5f;   // weight of the newest displacement in the EMA
+constexpr double kMinVelocityDt = 1e-4;      // s; shorter frame intervals give no velocity
+constexpr float kMaxPredictionBoxes = 2.0f;  // predicted shift capped at this many box sides
+constexpr float kDistanceSigma = 0.5f;       // distance prior sigma, fraction of the window side
+constexpr float kSizeSigma = 0.7f;           // size prior sigma on |ln(area ratio)| / 2
+constexpr float kSpawnMaxIou = 0.05f;        // a new track must not overlap an existing one
+constexpr float kMinSearchBoxSide = 16.0f;   // px; the window is search_window_scale x this at least
+constexpr float kWindowGrowthPerFailure = 0.5f;
+constexpr float kMaxWindowGrowth = 3.0f;
+constexpr float kSoloPrior = 0.8f;           // re-detection: a candidate alone in the window ...
+constexpr float kSoloMargin = 0.5f;          // ... (every other prior below this x its own)
+constexpr float kVerifyPanShare = 0.5f;     // verify(): share of the background's displacement added
+constexpr float kVerifyMinImageMotion = 2.0f;  // verify(): px an overlay never moves in the image
+constexpr double kVerifyStillShare = 0.5;    // verify(): a box with this share of still pixels is an overlay
+constexpr float kMaxResize = 1.5f;           // a re-detected box side is within 1/1.5..1.5 x the last
+
+// Keeps the box's centre inside the frame (the box may still stick out).
+inline cv::Rect2f clampCentre(const cv::Rect2f& b, const cv::Size& frame) {
+  cv::Point2f c = boxCentre(b);
+  c.x = std::min(std::max(c.x, 0.0f), static_cast<float>(frame.width - 1));
+  c.y = std::min(std::max(c.y, 0.0f), static_cast<float>(frame.height - 1));
+  return boxCentredAt(c, b.size());
+}
+
+inline bool usableBox(const cv::Rect2f& b, const cv::Size& frame) {
+  if (!std::isfinite(b.x) || !std::isfinite(b.y) || !std::isfinite(b.width) ||
+      !std::isfinite(b.height) || b.width < 1.0f || b.height < 1.0f) {
+    return false;
+  }
+  return (b & cv::Rect2f(0.0f, 0.0f, static_cast<float>(frame.width), static_cast<float>(frame.height)))
+             .area() > 0.0f;
+}
+
+// Report order: tracking, re-detecting, lost.
+inline int stateRank(TrackState s) {
+  switch (s) {
+    case TrackState::kTracking:
+      return 0;
+    case TrackState::kRedetecting:
+      return 1;
+    case TrackState::kLost:
+      return 2;
+    case TrackState::kSearching:
+      break;
+  }
+  return 3;
+}
+
+}  // namespace pipeline_detail
+
+struct Pipeline::Impl {
+  // One obstacle's state; newTrack() resets each part as a whole.
+  struct Track {
+    // Where the object was last seen well and how its centre moves (px/s, an EMA of the good
+    // frames' displacements): the re-detection's prediction.
+    struct Motion {
+      cv::Rect2f good_box;  // last box accepted with a good peak
+      double good_stamp = 0.0;
+      cv::Point2f velocity{0.0f, 0.0f};
+      bool have_velocity = false;
+    };
+    // Running means of the peak and PSR on good frames (LMCF, Wang et al. CVPR 2017).
+    struct PeakMeans {
+      float ref_peak = 0.0f, ref_psr = 0.0f;
+      int ref_count = 0;
+    };
+    // What is currently set in the filter (configureFilter sets it only when it changes).
+    struct FilterGate {
+      float learn_gate = -1.0f;  // learn_threshold currently set in the filter
+      bool learning = true;      // learning_rate currently set in the filter (else 0)
+    };
+    // Verification of an auto-started track (verify()): it counts as an obstacle once it has
+    // moved like one, or grown; until then it may give way to a challenger.
+    struct Verification {
+      bool verified = true;
+      int watched = 0;  // checks while unverified (one per auto-init frame)
+      cv::Point2f start_centre{0.0f, 0.0f};
+      cv::Point2d start_background{0.0, 0.0};
+      float start_log_size = 0.0f;
+      float max_image_motion = 0.0f;
+    };
+
+    explicit Track(const Params& p) : kcf(p) { looming.setParams(p.looming_rate_noise, p.looming_from_pixels); }
+    int id = -1;
+    KcfTracker kcf;
+    LoomingEstimator looming;
+    TrackState state = TrackState::kTracking;
+    cv::Rect2f box;  // box reported this frame
+    int failures = 0;
+    int age = 0;
+    KcfResult result;
+    Motion motion;
+    PeakMeans peaks;
+    FilterGate gate;
+    Verification verification;
+    // A challenger (search()): tracked but not reported until it replaces an unverified track.
+    bool probation = false;
+    float contrast_ref = 0.0f;  // TargetContrast of the box the filter (re)started on
+  };
+
+  struct Candidate {
+    cv::Rect2f box;
+    float prior = 0.0f;
+    const SalientRegion* region = nullptr;
+  };
+
+  explicit Impl(const Params& p) : params(p), saliency(p), autoinit(p) {
+    validate(params);
+    saliency.setParams(params);
+    autoinit.setParams(params);
+    tracks.reserve(16);
+    pool.reserve(16);
+    out.reserve(16);
+    candidates.reserve(64);
+    spawn.reserve(16);
+  }
+
+  Params params;
+  Params pending;
+  bool have_pending = false;
+  SaliencyDetector saliency;
+  AutoInitializer autoinit;
+  ExtentGrower extent;
+  TargetContrast contrast;
+  std::vector<std::unique_ptr<Track>> tracks;
+  std::vector<std::unique_ptr<Track>> pool;  // ended tracks, reused (their filter buffers too)
+  std::vector<Obstacle> out;
+  std::vector<Candidate> candidates;
+  std::vector<cv::Rect2f> spawn;
+  int next_id = 0;
+  long frame_index = 0;
+  double last_stamp = -std::numeric_limits<double>::infinity();
+  cv::Size frame_size;
+  bool autoinit_fresh = true;
+  // pipeline.cpp
+  static void checkFrame(const cv::Mat& frame, const char* who);
+  void resetAll();
+  void applyPending();
+  void beginFrame(const cv::Mat& frame, double stamp, const char* who);
+  Track& newTrack(const cv::Mat& frame, double stamp, const cv::Rect2f& box);
+  Track& newAutoTrack(const cv::Mat& frame, double stamp, const cv::Rect2f& box);
+  void report();
+  const std::vector<Obstacle>& run(const cv::Mat& frame, double stamp, const cv::Rect2f* start_box);
+
+  // pipeline_tracking.cpp
+  void acceptGood(Track& t, const cv::Rect2f& box, double stamp);
+  cv::Rect2f predict(const Track& t, double stamp) const;
+  bool redetect(Track& t, const cv::Mat& frame, double stamp);
+  void gatherCandidates(const Track& t, const cv::Mat& frame, const cv::Rect2f& pred);
+  int chooseCandidate(Track& t, const cv::Mat& frame, KcfResult& chosen);
+  void noteSplit(int best);
+  bool restartOn(Track& t, const cv::Mat& frame, double stamp, const cv::Rect2f& region,
+                 const KcfResult& verification);
+  float goodPeak(const Track& t) const;
+  float acceptPeak(const Track& t) const;
+  void configureFilter(Track& t, bool learn);
+  static void updateRefs(Track& t, const KcfResult& r);
+  float inFrameFraction(const cv::Rect2f& b) const;
+  void step(Track& t, const cv::Mat& frame, double stamp);
+
+  // pipeline_search.cpp
+  bool overlapsTrack(const cv::Rect2f& b, float max_iou) const;
+  int activeTracks() const;
+  void mergeTracks();
+  void verify(Track& t);
+  Track* replaceableTrack();
+  bool anyUnverified() const;
+  Track* challenger();
+  void removeTrack(const Track* victim);
+  void settleChallenge();
+  void search(const cv::Mat& frame, double stamp);
+  void spawnSplits(const cv::Mat& frame, double stamp);
+
+  static constexpr int kRefWarmup = 3;         // good frames before the relative tests apply
+  static constexpr float kRefSmoothing = 0.2f;   // EMA weight of the newest good frame
+  static constexpr float kMinInFrame = 0.5f;     // share of a tracked box inside the frame
+  static constexpr float kMaxLearnGate = 0.75f;
+};
+
+}  // namespace core
+}  // namespace obstacle_tracker

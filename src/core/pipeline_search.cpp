@@ -1,0 +1,197 @@
+// Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
+//
+// Pipeline::Impl (pipeline_impl.h): tracks among themselves. Auto-initialisation while there is
+// room, verification of auto-started tracks (and their challengers), merges and splits.
+#include <algorithm>
+#include <cmath>
+
+#include "pipeline_impl.h"
+
+namespace obstacle_tracker {
+namespace core {
+
+using namespace pipeline_detail;  // NOLINT(build/namespaces): the pipeline's own constants
+
+bool Pipeline::Impl::overlapsTrack(const cv::Rect2f& b, float max_iou) const {
+  for (const auto& t : tracks) {
+    if (t->state == TrackState::kLost) continue;
+    if (boxIou(b, t->box) > max_iou || t->box.contains(boxCentre(b)) || b.contains(boxCentre(t->box))) return true;
+  }
+  return false;
+}
+
+int Pipeline::Impl::activeTracks() const {
+  int n = 0;
+  for (const auto& t : tracks) n += t->state != TrackState::kLost && !t->probation ? 1 : 0;
+  return n;
+}
+
+void Pipeline::Impl::mergeTracks() {
+  for (std::size_t i = 0; i < tracks.size(); ++i) {
+    for (std::size_t j = i + 1; j < tracks.size();) {
+      Track& a = *tracks[i];
+      Track& b = *tracks[j];
+      if (a.state != TrackState::kLost && b.state != TrackState::kLost &&
+          boxIou(a.box, b.box) > params.merge_iou) {
+        // Keep the one in the better state, then the older one.
+        const bool keep_a = a.probation != b.probation          ? b.probation
+                            : stateRank(a.state) != stateRank(b.state) ? stateRank(a.state) < stateRank(b.state)
+                                                                       : a.age >= b.age;
+        const std::size_t drop = keep_a ? j : i;
+        pool.push_back(std::move(tracks[drop]));
+        tracks.erase(tracks.begin() + static_cast<long>(drop));
+        if (!keep_a) {
+          j = i + 1;  // tracks[i] is now another track: recheck from its successor
+          continue;
+        }
+      } else {
+        ++j;
+      }
+    }
+  }
+}
+
+// Auto-initialisation confirms a candidate from a few frames of evidence, and sometimes
+// confirms a scene object (a building in a panning view, a changing digit of the camera's
+// on-screen display); with one track allowed, such a track would hold the slot for good. So an
+// auto-started track is verified over a longer time with a motion test like the
+// confirmation's: it is an obstacle once its box has moved from where it started against the
+// background (AutoInitializer::backgroundMotion) by 2 x auto_init_min_motion plus half the
+// background's own displacement, and either as far in the image or (a target the camera keeps
+// in view) a little, with pixels that change; or once it has grown by auto_init_min_growth in
+// ln sqrt(area).
+// While a track is unverified the AutoInitializer keeps running, and a candidate it confirms
+// elsewhere becomes a challenger: tracked and verified the same way, but not reported. A
+// challenger that passes replaces a track still unverified after auto_init_verify_frames
+// (settleChallenge). A verified track is never replaced; an unverified one is replaced only by
+// a challenger that has proved itself a mover, so an obstacle on a collision course, which
+// neither moves nor grows much at first, is not given up for a candidate that has not proved
+// more (an auto-started obstacle that hovers in a still view never verifies and would give way
+// to a mover). While a track is unverified the AutoInitializer costs what it costs while
+// searching (and allocates as it does: the feature tracks of background_motion.h).
+void Pipeline::Impl::verify(Track& t) {
+  if (t.verification.verified || t.state == TrackState::kLost) return;
+  if (params.auto_init_verify_frames <= 0 || params.auto_init_min_motion <= 0.0) {
+    t.verification.verified = true;  // switched off since the track started
+    return;
+  }
+  ++t.verification.watched;
+  // On the camera's on-screen display: never an obstacle, however it seems to move.
+  if (autoinit.overlayShare(t.box) >= AutoInitializer::kOverlayShare) return;
+  const cv::Point2d bg_d = autoinit.backgroundMotion() - t.verification.start_background;
+  const cv::Point2f bg(static_cast<float>(bg_d.x), static_cast<float>(bg_d.y));
+  const cv::Point2f in_image = boxCentre(t.box) - t.verification.start_centre;
+  const float image_motion = std::hypot(in_image.x, in_image.y);
+  const float bg_motion = std::hypot(bg.x, bg.y);
+  const float own_motion = std::hypot(in_image.x - bg.x, in_image.y - bg.y);
+  t.verification.max_image_motion = std::max(t.verification.max_image_motion, image_motion);
+  // Twice the confirmation's distance, whatever the size (the filter's box does not fluctuate
+  // with the segmentation as a candidate's region does), plus a share of the background's own
+  // displacement: the global estimate lags a fast pan (by about half on antiuav_ir_04's pan over
+  // sky and a tree line) and a near object moves unlike the distant background (parallax), so
+  // a scene object seems to move against the background in proportion to the pan.
+  const float need = 2.0f * static_cast<float>(params.auto_init_min_motion) + kVerifyPanShare * bg_motion;
+  // Moved against the background, and in the image too, or (a target the camera keeps in view)
+  // at least a little in the image with pixels that change: an overlay is pixel-locked.
+  const bool moved = own_motion >= need &&
+                     (image_motion >= need || (t.verification.max_image_motion >= kVerifyMinImageMotion &&
+                                               autoinit.stillShare(t.box) < kVerifyStillShare));
+  const float growth = 0.5f * std::log(std::max(1.0f, t.box.area())) - t.verification.start_log_size;
+  const bool grew = params.auto_init_min_growth > 0.0 && growth >= static_cast<float>(params.auto_init_min_growth);
+  if (moved || grew) t.verification.verified = true;
+}
+
+// The unverified track (not a challenger) watched longest past auto_init_verify_frames, or none.
+Pipeline::Impl::Track* Pipeline::Impl::replaceableTrack() {
+  Track* best = nullptr;
+  for (auto& t : tracks) {
+    if (t->verification.verified || t->probation || t->state == TrackState::kLost ||
+        t->verification.watched < params.auto_init_verify_frames) {
+      continue;
+    }
+    if (best == nullptr || t->verification.watched > best->verification.watched) best = t.get();
+  }
+  return best;
+}
+
+bool Pipeline::Impl::anyUnverified() const {
+  for (const auto& t : tracks) {
+    if (!t->verification.verified && !t->probation && t->state != TrackState::kLost) return true;
+  }
+  return false;
+}
+
+Pipeline::Impl::Track* Pipeline::Impl::challenger() {
+  for (auto& t : tracks) {
+    if (t->probation) return t.get();
+  }
+  return nullptr;
+}
+
+void Pipeline::Impl::removeTrack(const Track* victim) {
+  for (auto& t : tracks) {
+    if (t.get() != victim) continue;
+    std::swap(t, tracks.back());
+    pool.push_back(std::move(tracks.back()));
+    tracks.pop_back();
+    return;
+  }
+}
+
+// A challenger that proved itself a mover takes the place of the unverified track; one that
+// did not within twice the verification time, or was lost, is dropped.
+void Pipeline::Impl::settleChallenge() {
+  Track* c = challenger();
+  if (c == nullptr) return;
+  if (c->state == TrackState::kLost || (!c->verification.verified && c->verification.watched > 2 * params.auto_init_verify_frames)) {
+    removeTrack(c);
+    return;
+  }
+  if (activeTracks() < params.max_obstacles) {
+    c->probation = false;  // the slot became free
+    return;
+  }
+  if (!c->verification.verified) return;
+  if (Track* stale = replaceableTrack()) {
+    removeTrack(stale);
+    c = challenger();
+    c->probation = false;
+  }
+}
+
+void Pipeline::Impl::search(const cv::Mat& frame, double stamp) {
+  const bool full = activeTracks() >= params.max_obstacles;
+  if (full && !anyUnverified()) {
+    if (Track* c = challenger()) removeTrack(c);
+    if (!autoinit_fresh) {
+      autoinit.reset();
+      autoinit_fresh = true;
+    }
+    return;
+  }
+  if ((frame_index - 1) % params.detection_interval != 0) return;
+  autoinit_fresh = false;
+  const std::vector<SalientRegion>& found = autoinit.update(frame, stamp);
+  for (auto& t : tracks) verify(*t);
+  settleChallenge();
+  for (const auto& r : found) {
+    if (!usableBox(r.box, frame_size) || overlapsTrack(r.box, kSpawnMaxIou)) continue;
+    if (activeTracks() < params.max_obstacles) {
+      newAutoTrack(frame, stamp, r.box);
+    } else if (anyUnverified() && challenger() == nullptr) {
+      newAutoTrack(frame, stamp, r.box).probation = true;
+    }
+  }
+}
+
+void Pipeline::Impl::spawnSplits(const cv::Mat& frame, double stamp) {
+  for (const auto& b : spawn) {
+    if (activeTracks() >= params.max_obstacles) break;
+    if (!usableBox(b, frame_size) || overlapsTrack(b, kSpawnMaxIou)) continue;
+    newTrack(frame, stamp, b);
+  }
+  spawn.clear();
+}
+
+}  // namespace core
+}  // namespace obstacle_tracker

@@ -1,0 +1,269 @@
+// Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
+//
+// Pipeline::Impl (pipeline_impl.h): one track's frame. The filter's answer is tested (peak against
+// the paper's threshold and the track's running mean); a failed frame re-detects among the salient
+// regions around the motion prediction, verified against the filter's model.
+#include <algorithm>
+#include <cmath>
+
+#include "pipeline_impl.h"
+
+namespace obstacle_tracker {
+namespace core {
+
+using namespace pipeline_detail;  // NOLINT(build/namespaces): the pipeline's own constants
+
+void Pipeline::Impl::acceptGood(Track& t, const cv::Rect2f& box, double stamp) {
+  const double dt = stamp - t.motion.good_stamp;
+  // Stamps microseconds apart (or a huge jump) give no usable velocity: a float overflow to
+  // infinity here became a NaN box in predict() (fuzz_pipeline, test_robust_fuzz.cpp).
+  if (dt > kMinVelocityDt) {
+    const cv::Point2f v = (boxCentre(box) - boxCentre(t.motion.good_box)) * static_cast<float>(1.0 / dt);
+    if (std::isfinite(v.x) && std::isfinite(v.y)) {
+      t.motion.velocity = t.motion.have_velocity ? (1.0f - kVelocitySmoothing) * t.motion.velocity + kVelocitySmoothing * v : v;
+      t.motion.have_velocity = true;
+    }
+  }
+  t.box = box;
+  t.motion.good_box = box;
+  t.motion.good_stamp = stamp;
+  t.state = TrackState::kTracking;
+  t.failures = 0;
+}
+
+cv::Rect2f Pipeline::Impl::predict(const Track& t, double stamp) const {
+  cv::Point2f shift(0.0f, 0.0f);
+  if (t.motion.have_velocity) {
+    shift = t.motion.velocity * static_cast<float>(stamp - t.motion.good_stamp);
+    const float cap = kMaxPredictionBoxes * std::max(t.motion.good_box.width, t.motion.good_box.height);
+    const float n = std::hypot(shift.x, shift.y);
+    if (!std::isfinite(n)) {
+      shift = cv::Point2f(0.0f, 0.0f);  // e.g. a stamp jump of years times a velocity
+    } else if (n > cap) {
+      shift *= cap / n;
+    }
+  }
+  return clampCentre(boxCentredAt(boxCentre(t.motion.good_box) + shift, t.motion.good_box.size()), frame_size);
+}
+
+// One re-detection attempt; true when a candidate was accepted (the filter restarted). The
+// filter's own answer already failed this frame (step()); candidates are salient regions.
+bool Pipeline::Impl::redetect(Track& t, const cv::Mat& frame, double stamp) {
+  gatherCandidates(t, frame, predict(t, stamp));
+  KcfResult chosen;
+  const int best = chooseCandidate(t, frame, chosen);
+  // A split: with room for more tracks, a clearly separated, strong salient region that is
+  // not the accepted one becomes a new track (handled by the caller after the loop).
+  if (params.max_obstacles > 1) noteSplit(best);
+  if (best < 0) return false;
+  return restartOn(t, frame, stamp, candidates[static_cast<std::size_t>(best)].box, chosen);
+}
+
+// The salient regions in the search window around the prediction `pred`, each with a prior from
+// its saliency, its distance to the prediction and its size and aspect against the last good
+// box; best priors first.
+void Pipeline::Impl::gatherCandidates(const Track& t, const cv::Mat& frame, const cv::Rect2f& pred) {
+  // The window grows while the re-detection fails (the object keeps moving) and never gets
+  // too small for a tiny target (a few-pixel drone moves farther than its size per frame).
+  const float grow = std::min(kMaxWindowGrowth, 1.0f + kWindowGrowthPerFailure * static_cast<float>(t.failures));
+  const cv::Size2f search_size(std::max(kMinSearchBoxSide, pred.width * grow),
+                               std::max(kMinSearchBoxSide, pred.height * grow));
+  const cv::Rect2f search_box = boxCentredAt(boxCentre(pred), search_size);
+  const cv::Rect window = SaliencyDetector::searchWindow(frame_size, search_box, params.search_window_scale);
+  candidates.clear();
+  if (window.area() > 0) {
+    const std::vector<SalientRegion>& regions = saliency.detectInWindow(frame, search_box);
+    float best_score = 0.0f;
+    for (const auto& r : regions) best_score = std::max(best_score, r.score);
+    const float side = static_cast<float>(std::max(window.width, window.height));
+    const float sigma_d = kDistanceSigma * side;
+    const float last_area = std::max(1.0f, t.motion.good_box.area());
+    const float last_aspect = t.motion.good_box.width / std::max(1.0f, t.motion.good_box.height);
+    for (const auto& r : regions) {
+      if (!usableBox(r.box, frame_size)) continue;
+      const cv::Point2f d = boxCentre(r.box) - boxCentre(pred);
+      const float dist = std::exp(-(d.x * d.x + d.y * d.y) / (2.0f * sigma_d * sigma_d));
+      const float la = 0.5f * std::log(std::max(1.0f, r.box.area()) / last_area);
+      const float lr = std::log((r.box.width / std::max(1.0f, r.box.height)) / std::max(1e-3f, last_aspect));
+      const float size = std::exp(-(la * la + 0.25f * lr * lr) / (2.0f * kSizeSigma * kSizeSigma));
+      const float sal = best_score > 0.0f ? std::sqrt(std::max(0.0f, r.score) / best_score) : 0.0f;
+      Candidate c;
+      c.box = r.box;
+      c.prior = sal * dist * size;
+      c.region = &r;
+      candidates.push_back(c);
+    }
+  }
+  std::sort(candidates.begin(), candidates.end(),
+            [](const Candidate& a, const Candidate& b) { return a.prior > b.prior; });
+}
+
+// The candidate that verifies best against the filter's model (KcfTracker::evaluate), or the
+// solo rule's; -1 when none. `chosen` is its verification.
+int Pipeline::Impl::chooseCandidate(Track& t, const cv::Mat& frame, KcfResult& chosen) {
+  const std::size_t verify =
+      std::min<std::size_t>(candidates.size(), static_cast<std::size_t>(params.redetect_candidates));
+  // A new region must match the model about as well as the target usually does (a background
+  // patch or a passing bird correlates weakly but often above the tracking threshold).
+  const float accept = acceptPeak(t);
+  int best = -1;
+  float best_final = 0.0f;
+  KcfResult first_result;
+  for (std::size_t i = 0; i < verify; ++i) {
+    KcfResult r = t.kcf.evaluate(frame, candidates[i].box);
+    if (i == 0) first_result = r;
+    if (!(r.peak >= accept)) continue;
+    const float final_score = r.peak * (0.5f + 0.5f * candidates[i].prior);
+    if (final_score > best_final) {
+      best_final = final_score;
+      best = static_cast<int>(i);
+      chosen = r;
+    }
+  }
+  // The paper's re-detection trusts saliency alone. Verification against the model protects
+  // from distractors but fails when the target's surroundings change (a drone crossing from
+  // sky into a dark ground band: the model, learned on sky, answers 0.08-0.10 there against
+  // 0.05-0.07 for clutter, below the relative test). So a candidate that is alone in the
+  // window in the saliency sense (prior >= kSoloPrior, every other prior below kSoloMargin x
+  // its own), is accepted on a weaker verification (redetect_solo_peak x peak_threshold) once
+  // the ordinary verification has failed on an earlier frame. It bypasses the relative test
+  // that keeps occluders and birds out, so it is a parameter (0 switches it off).
+  if (best < 0 && params.redetect_solo_peak > 0.0 && t.failures > 0 && verify > 0 &&
+      candidates[0].prior >= kSoloPrior &&
+      (candidates.size() < 2 || candidates[1].prior < kSoloMargin * candidates[0].prior) &&
+      first_result.peak >= static_cast<float>(params.redetect_solo_peak * params.peak_threshold)) {
+    best = 0;
+    chosen = first_result;
+  }
+  return best;
+}
+
+void Pipeline::Impl::noteSplit(int best) {
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    if (static_cast<int>(i) == best || candidates[i].prior < 0.5f) continue;
+    if (best >= 0 && boxIou(candidates[i].box, candidates[static_cast<std::size_t>(best)].box) > 0.0f) continue;
+    spawn.push_back(candidates[i].box);
+    break;
+  }
+}
+
+// Restarts the filter on a re-detected region (the paper's re-initialisation on the new box).
+bool Pipeline::Impl::restartOn(Track& t, const cv::Mat& frame, double stamp, const cv::Rect2f& region,
+                               const KcfResult& verification) {
+  // The salient region's own box, so the box takes the object's current size and shape (the
+  // paper's re-initialisation), grown from the region's bright core to the object's extent.
+  cv::Rect2f box = extent.grow(frame, region, params.extent_contrast);
+  {
+    // The region's size and shape, within a band around the last good box: Otsu regions of a
+    // few-pixel target are often only its hot core, and one bad segmentation must not
+    // collapse or blow up the box.
+    const cv::Size2f last = t.motion.good_box.size();
+    const cv::Size2f size(std::min(std::max(box.width, last.width / kMaxResize), last.width * kMaxResize),
+                          std::min(std::max(box.height, last.height / kMaxResize), last.height * kMaxResize));
+    box = boxCentredAt(boxCentre(box), size);
+  }
+  if (!usableBox(box, frame_size)) return false;
+  t.kcf.init(frame, box);
+  t.contrast_ref = contrast.measure(frame, box);
+  t.looming.restart(frame, stamp, box);
+  t.result = verification;
+  t.result.box = box;
+  t.result.model_updated = true;
+  acceptGood(t, box, stamp);
+  return true;
+}
+
+// The peak a frame needs to count as good: the paper's absolute test plus a fraction of the
+// track's running mean peak (so that an occluder that still correlates with the background
+// context is not taken for the target).
+float Pipeline::Impl::goodPeak(const Track& t) const {
+  float th = static_cast<float>(params.peak_threshold);
+  if (t.peaks.ref_count >= kRefWarmup) th = std::max(th, static_cast<float>(params.relative_peak_threshold) * t.peaks.ref_peak);
+  return th;
+}
+
+// The peak a re-detected answer needs (a salient region, or the filter finding the target
+// again on its own): the tracking test, and redetect_relative_threshold x the running mean.
+float Pipeline::Impl::acceptPeak(const Track& t) const {
+  float accept = goodPeak(t);
+  if (t.peaks.ref_count >= kRefWarmup) {
+    accept = std::max(accept, static_cast<float>(params.redetect_relative_threshold) * t.peaks.ref_peak);
+  }
+  return accept;
+}
+
+// Filter settings for the next update. While tracking: learning gated by learn_threshold,
+// raised to the confidence of a response at learn_relative_threshold x the running mean peak
+// and PSR (LMCF's rule, Wang et al. CVPR 2017), capped so that a perfect history does not
+// freeze the model. While re-detecting: no learning at all (learning_rate 0), the filter only
+// searches around its last position.
+void Pipeline::Impl::configureFilter(Track& t, bool learn) {
+  float gate = static_cast<float>(params.learn_threshold);
+  if (t.peaks.ref_count >= kRefWarmup && params.learn_relative_threshold > 0.0) {
+    const float k = static_cast<float>(params.learn_relative_threshold);
+    gate = std::max(gate, std::min(kMaxLearnGate, KcfTracker::confidenceFrom(k * t.peaks.ref_peak, k * t.peaks.ref_psr)));
+  }
+  if (std::abs(gate - t.gate.learn_gate) > 1e-3f || learn != t.gate.learning) {
+    Params p = params;
+    p.learn_threshold = gate;
+    if (!learn) p.learning_rate = 0.0;
+    t.kcf.setParams(p);
+    t.gate.learn_gate = gate;
+    t.gate.learning = learn;
+  }
+}
+
+void Pipeline::Impl::updateRefs(Track& t, const KcfResult& r) {
+  if (t.peaks.ref_count == 0) {
+    t.peaks.ref_peak = r.peak;
+    t.peaks.ref_psr = r.psr;
+  } else {
+    const float a = t.peaks.ref_count < kRefWarmup ? 1.0f / static_cast<float>(t.peaks.ref_count + 1) : kRefSmoothing;
+    t.peaks.ref_peak += a * (r.peak - t.peaks.ref_peak);
+    t.peaks.ref_psr += a * (r.psr - t.peaks.ref_psr);
+  }
+  ++t.peaks.ref_count;
+}
+
+float Pipeline::Impl::inFrameFraction(const cv::Rect2f& b) const {
+  const cv::Rect2f f(0.0f, 0.0f, static_cast<float>(frame_size.width), static_cast<float>(frame_size.height));
+  return b.area() > 0.0f ? (b & f).area() / b.area() : 0.0f;
+}
+
+void Pipeline::Impl::step(Track& t, const cv::Mat& frame, double stamp) {
+  ++t.age;
+  // The filter first, in both states (re-detecting: without learning).
+  configureFilter(t, t.state == TrackState::kTracking);
+  const KcfResult r = t.kcf.update(frame);
+  t.result = r;
+  // A box mostly outside the frame is an obstacle leaving the view: the filter's answer there
+  // correlates mostly padding and background, so it does not count as tracking.
+  const float needed = t.state == TrackState::kTracking ? goodPeak(t) : acceptPeak(t);
+  if (r.peak >= needed && usableBox(r.box, frame_size) && inFrameFraction(r.box) >= kMinInFrame) {
+    updateRefs(t, r);
+    t.looming.track(frame, stamp, r.box);
+    acceptGood(t, r.box, stamp);
+    // A peak on a box that no longer holds the contrasted object it started on is the filter
+    // following the background (target_contrast.h): reported as no better than re-detecting.
+    if (TargetContrast::lost(t.contrast_ref, contrast.measure(frame, r.box))) {
+      t.result.confidence = std::min(t.result.confidence, static_cast<float>(params.learn_threshold));
+    }
+    return;
+  }
+  t.state = TrackState::kRedetecting;
+  // Salient regions around the prediction (also on the frame where the peak fell).
+  if (redetect(t, frame, stamp)) return;
+  ++t.failures;
+  t.box = predict(t, stamp);
+  t.result.confidence = std::min(t.result.confidence, static_cast<float>(params.learn_threshold));
+  t.result.model_updated = false;
+  if (t.failures > params.max_redetect_failures) {
+    t.state = TrackState::kLost;
+    t.result.confidence = 0.0f;
+  } else {
+    t.state = TrackState::kRedetecting;
+  }
+}
+
+}  // namespace core
+}  // namespace obstacle_tracker
