@@ -76,7 +76,7 @@ SceneRun runScene(const std::string& name, int frames, bool gt_start, const core
 
 TEST(PipelineScenes, DemoFromGroundTruth) {
   // An approach: the box lags the growth (ApproachTimeToContact). Measured 1.000 / 0.417 since
-  // the scale self-calibration (kcf.cpp; 0.468 before it, while the generated crossing went
+  // the scale self-calibration (kcf_scale.cpp; 0.468 before it, while the generated crossing went
   // 0.62 -> 0.83 and the dev clips 0.508 -> 0.544 AUC).
   const SceneRun r = runScene("demo", 150, true);
   EXPECT_GE(r.scores.precision20, 0.90);
@@ -124,7 +124,7 @@ TEST(PipelineScenes, CollisionCourseAutoInit) {
 }
 
 // Auto-initialisation sometimes confirms a scene object; an auto-started track is then verified
-// over a longer time (pipeline.cpp, verify()), and a confirmed mover that passes the same test
+// over a longer time (pipeline_search.cpp, verify()), and a confirmed mover that passes the same test
 // takes its place. `tiny` with the camera's on-screen display and shake at 640x480 (seed 1)
 // starts on a part of the lattice mast and keeps it for good with the verification off; with it,
 // the tiny multirotor takes over.

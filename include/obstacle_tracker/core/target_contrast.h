@@ -23,7 +23,7 @@ namespace core {
 // sky learns mostly sky; under a pan it can follow the sky's texture (clouds, the sensor's fixed
 // pattern) with a perfect peak while the target flies on. The peak cannot tell; the box's
 // contrast can: lost() is true when a box that started on a contrasted object holds nothing
-// that stands out any more, and the reported confidence is then capped (pipeline.cpp).
+// that stands out any more, and the reported confidence is then capped (pipeline_tracking.cpp).
 class TargetContrast {
  public:
   static constexpr float kMinMargin = 4.0f;
