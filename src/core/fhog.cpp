@@ -58,6 +58,52 @@ void maxGradient(const uchar* row, const uchar* up, const uchar* down, int w, fl
   }
 }
 
+// Per pixel of one row: the nearest of the 18 directions (largest |dot| over the 9 axes, its sign
+// picks the half) into gbin, and gm2 (squared magnitude) replaced by the magnitude. Bins are kept
+// as floats so the loop runs in OpenCV's universal intrinsics.
+void nearestDirections(const float* gdx, const float* gdy, float* gm2, float* gbin, int w) {
+  const Directions& dir = directions();
+  int x = 0;
+#if CV_SIMD
+  {
+    const int lanes = cv::v_float32::nlanes;
+    const cv::v_float32 zero = cv::vx_setzero_f32();
+    for (; x <= w - lanes; x += lanes) {
+      const cv::v_float32 vdx = cv::vx_load(gdx + x);
+      const cv::v_float32 vdy = cv::vx_load(gdy + x);
+      cv::v_float32 best = zero;
+      cv::v_float32 bin = zero;
+      for (int k = 0; k < 9; ++k) {
+        // Two roundings as in the scalar tail, never a fused multiply-add (NEON's may fuse).
+        const cv::v_float32 d = cv::vx_setall_f32(dir.cx[k]) * vdx + cv::vx_setall_f32(dir.cy[k]) * vdy;
+        const cv::v_float32 ad = cv::v_abs(d);
+        const cv::v_float32 better = ad > best;
+        best = cv::v_select(better, ad, best);
+        const cv::v_float32 kb = cv::v_select(d >= zero, cv::vx_setall_f32(static_cast<float>(k)),
+                                              cv::vx_setall_f32(static_cast<float>(k + 9)));
+        bin = cv::v_select(better, kb, bin);
+      }
+      cv::v_store(gbin + x, bin);
+      cv::v_store(gm2 + x, cv::v_sqrt(cv::vx_load(gm2 + x)));
+    }
+  }
+#endif
+  for (; x < w; ++x) {
+    float best = 0.0f;
+    float bin = 0.0f;
+    for (int k = 0; k < 9; ++k) {
+      const float d = dir.cx[k] * gdx[x] + dir.cy[k] * gdy[x];
+      const float ad = std::fabs(d);
+      if (ad > best) {
+        best = ad;
+        bin = static_cast<float>(d >= 0.0f ? k : k + 9);
+      }
+    }
+    gbin[x] = bin;
+    gm2[x] = std::sqrt(gm2[x]);
+  }
+}
+
 }  // namespace
 
 void FhogExtractor::compute(const cv::Mat& patch, int cell, cv::Mat& out) {
@@ -81,7 +127,6 @@ void FhogExtractor::compute(const cv::Mat& patch, int cell, cv::Mat& out) {
   grey_.assign(ncell, 0.0f);
   out.create(kChannels * rows, cols, CV_32F);
 
-  const Directions& dir = directions();
   const float inv_cell = 1.0f / static_cast<float>(cell);
 
   // Per-column tables (neighbour offsets, cell index and bilinear weights along x), made once per
@@ -113,89 +158,66 @@ void FhogExtractor::compute(const cv::Mat& patch, int cell, cv::Mat& out) {
     } else {
       maxGradient<3>(row, up, down, w, gdx, gdy, gm2);
     }
-    // Nearest of the 18 directions: largest |dot| over the 9 axes, its sign picks the half.
-    // (Bins are kept as floats so the loop runs in OpenCV's universal intrinsics.)
-    int x = 0;
-#if CV_SIMD
-    {
-      const int lanes = cv::v_float32::nlanes;
-      const cv::v_float32 zero = cv::vx_setzero_f32();
-      for (; x <= w - lanes; x += lanes) {
-        const cv::v_float32 vdx = cv::vx_load(gdx + x);
-        const cv::v_float32 vdy = cv::vx_load(gdy + x);
-        cv::v_float32 best = zero;
-        cv::v_float32 bin = zero;
-        for (int k = 0; k < 9; ++k) {
-          // Two roundings as in the scalar tail, never a fused multiply-add (NEON's may fuse).
-          const cv::v_float32 d = cv::vx_setall_f32(dir.cx[k]) * vdx + cv::vx_setall_f32(dir.cy[k]) * vdy;
-          const cv::v_float32 ad = cv::v_abs(d);
-          const cv::v_float32 better = ad > best;
-          best = cv::v_select(better, ad, best);
-          const cv::v_float32 kb = cv::v_select(d >= zero, cv::vx_setall_f32(static_cast<float>(k)),
-                                                cv::vx_setall_f32(static_cast<float>(k + 9)));
-          bin = cv::v_select(better, kb, bin);
-        }
-        cv::v_store(gbin + x, bin);
-        cv::v_store(gm2 + x, cv::v_sqrt(cv::vx_load(gm2 + x)));
-      }
-    }
-#endif
-    for (; x < w; ++x) {
-      float best = 0.0f;
-      float bin = 0.0f;
-      for (int k = 0; k < 9; ++k) {
-        const float d = dir.cx[k] * gdx[x] + dir.cy[k] * gdy[x];
-        const float ad = std::fabs(d);
-        if (ad > best) {
-          best = ad;
-          bin = static_cast<float>(d >= 0.0f ? k : k + 9);
-        }
-      }
-      gbin[x] = bin;
-      gm2[x] = std::sqrt(gm2[x]);
-    }
-    // Grey level (mean over the colour channels) summed per cell.
-    const int grey_row = y / cell;
-    if (grey_row < rows) {
-      float* gr = grey_.data() + static_cast<size_t>(grey_row) * cols;
-      const float inv_nc = 1.0f / static_cast<float>(nc);
-      for (int k = 0; k < cols; ++k) {
-        const uchar* p = row + static_cast<size_t>(k) * cell * nc;
-        int g = 0;
-        for (int i = 0; i < cell * nc; ++i) g += p[i];
-        gr[k] += static_cast<float>(g) * inv_nc;
-      }
-    }
-    // Bilinear votes into the 4 nearest cells.
-    const float yp = (static_cast<float>(y) + 0.5f) * inv_cell - 0.5f;
-    const int iy = static_cast<int>(std::floor(yp));
-    const float vy0 = yp - static_cast<float>(iy);
-    const float vy1 = 1.0f - vy0;
-    float* h0 = iy >= 0 ? hist_.data() + static_cast<size_t>(iy) * cols * kOrientations : nullptr;
-    float* h1 = iy + 1 < rows ? hist_.data() + static_cast<size_t>(iy + 1) * cols * kOrientations
-                              : nullptr;
-    for (int x = 0; x < w; ++x) {
-      const float mag = gm2[x];  // now the magnitude
-      if (mag <= 0.0f) continue;
-      const int bin = static_cast<int>(gbin[x]);
-      const int ix = col_cell_[x];
-      const float vx0 = col_w0_[x];
-      const float vx1 = 1.0f - vx0;
-      const bool x0_in = ix >= 0;
-      const bool x1_in = ix + 1 < cols;
-      if (h0 != nullptr) {
-        const float m = vy1 * mag;
-        if (x0_in) h0[ix * kOrientations + bin] += vx1 * m;
-        if (x1_in) h0[(ix + 1) * kOrientations + bin] += vx0 * m;
-      }
-      if (h1 != nullptr) {
-        const float m = vy0 * mag;
-        if (x0_in) h1[ix * kOrientations + bin] += vx1 * m;
-        if (x1_in) h1[(ix + 1) * kOrientations + bin] += vx0 * m;
-      }
+    nearestDirections(gdx, gdy, gm2, gbin, w);
+    accumulateRow(row, y, cell, nc, rows, cols);
+  }
+  normalise(rows, cols, cell, out);
+}
+
+// One row's share of the cells: its grey levels summed per cell, and each pixel's magnitude voted
+// bilinearly into the 4 nearest cells' orientation histograms (row_m2_ holds magnitudes, row_bin_
+// the bins).
+void FhogExtractor::accumulateRow(const uchar* row, int y, int cell, int nc, int rows, int cols) {
+  const int w = static_cast<int>(row_m2_.size());
+  const float inv_cell = 1.0f / static_cast<float>(cell);
+  const float* gm2 = row_m2_.data();
+  const float* gbin = row_bin_.data();
+  // Grey level (mean over the colour channels) summed per cell.
+  const int grey_row = y / cell;
+  if (grey_row < rows) {
+    float* gr = grey_.data() + static_cast<size_t>(grey_row) * cols;
+    const float inv_nc = 1.0f / static_cast<float>(nc);
+    for (int k = 0; k < cols; ++k) {
+      const uchar* p = row + static_cast<size_t>(k) * cell * nc;
+      int g = 0;
+      for (int i = 0; i < cell * nc; ++i) g += p[i];
+      gr[k] += static_cast<float>(g) * inv_nc;
     }
   }
+  // Bilinear votes into the 4 nearest cells.
+  const float yp = (static_cast<float>(y) + 0.5f) * inv_cell - 0.5f;
+  const int iy = static_cast<int>(std::floor(yp));
+  const float vy0 = yp - static_cast<float>(iy);
+  const float vy1 = 1.0f - vy0;
+  float* h0 = iy >= 0 ? hist_.data() + static_cast<size_t>(iy) * cols * kOrientations : nullptr;
+  float* h1 = iy + 1 < rows ? hist_.data() + static_cast<size_t>(iy + 1) * cols * kOrientations
+                            : nullptr;
+  for (int x = 0; x < w; ++x) {
+    const float mag = gm2[x];  // now the magnitude
+    if (mag <= 0.0f) continue;
+    const int bin = static_cast<int>(gbin[x]);
+    const int ix = col_cell_[x];
+    const float vx0 = col_w0_[x];
+    const float vx1 = 1.0f - vx0;
+    const bool x0_in = ix >= 0;
+    const bool x1_in = ix + 1 < cols;
+    if (h0 != nullptr) {
+      const float m = vy1 * mag;
+      if (x0_in) h0[ix * kOrientations + bin] += vx1 * m;
+      if (x1_in) h0[(ix + 1) * kOrientations + bin] += vx0 * m;
+    }
+    if (h1 != nullptr) {
+      const float m = vy0 * mag;
+      if (x0_in) h1[ix * kOrientations + bin] += vx1 * m;
+      if (x1_in) h1[(ix + 1) * kOrientations + bin] += vx0 * m;
+    }
+  }
+}
 
+// Per cell: the 18 contrast-sensitive and 9 insensitive orientations, each normalised by the 4
+// 2x2 blocks around the cell and truncated, 4 texture sums, and the grey level (fhog.h).
+void FhogExtractor::normalise(int rows, int cols, int cell, cv::Mat& out) {
+  const int ncell = rows * cols;
   // Energy of each cell (contrast-insensitive histogram, squared).
   for (int i = 0; i < ncell; ++i) {
     const float* hc = hist_.data() + static_cast<size_t>(i) * kOrientations;

@@ -42,6 +42,9 @@ class FhogExtractor {
   void compute(const cv::Mat& patch, int cell, cv::Mat& out);
 
  private:
+  void accumulateRow(const uchar* row, int y, int cell, int nc, int rows, int cols);
+  void normalise(int rows, int cols, int cell, cv::Mat& out);
+
   std::vector<float> hist_;   // rows x cols x 18 orientation histograms
   std::vector<float> energy_; // rows x cols: sum over 9 of (h[o] + h[o+9])^2
   std::vector<float> grey_;   // rows x cols grey sums
