@@ -10,6 +10,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "auto_init_impl.h"
+#include "obstacle_tracker/core/frame_check.h"
 
 namespace obstacle_tracker {
 namespace core {
@@ -186,9 +187,7 @@ void AutoInitializer::reset() { impl_->reset(); }
 
 const std::vector<SalientRegion>& AutoInitializer::update(const cv::Mat& frame, double stamp) {
   (void)stamp;
-  if (frame.empty()) throw std::invalid_argument("AutoInitializer::update: empty frame");
-  if (frame.type() != CV_8UC1 && frame.type() != CV_8UC3)
-    throw std::invalid_argument("AutoInitializer::update: frame must be CV_8UC1 or CV_8UC3");
+  requireFrame(frame, "AutoInitializer::update");
   Impl& m = *impl_;
   if (frame.size() != m.size) {
     m.reset();

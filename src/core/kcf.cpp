@@ -18,6 +18,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "kcf_impl.h"
+#include "obstacle_tracker/core/frame_check.h"
 
 namespace obstacle_tracker {
 namespace core {
@@ -25,13 +26,6 @@ namespace core {
 using namespace kcf_detail;  // NOLINT(build/namespaces): the filter's own constants and helpers
 
 namespace {
-
-void checkFrame(const cv::Mat& frame, const char* who) {
-  if (frame.empty()) throw std::invalid_argument(std::string(who) + ": empty frame");
-  if (frame.type() != CV_8UC1 && frame.type() != CV_8UC3) {
-    throw std::invalid_argument(std::string(who) + ": frame must be CV_8UC1 or CV_8UC3 (BGR)");
-  }
-}
 
 void checkBox(const cv::Mat& frame, const cv::Rect2f& box, const char* who) {
   if (!finiteBox(box)) throw std::invalid_argument(std::string(who) + ": box is not finite");
@@ -90,7 +84,7 @@ const Params& KcfTracker::params() const {
 
 void KcfTracker::init(const cv::Mat& frame, const cv::Rect2f& box) {
   checkImpl(impl_);
-  checkFrame(frame, "KcfTracker::init");
+  requireFrame(frame, "KcfTracker::init");
   checkBox(frame, box, "KcfTracker::init");
   impl_->initialized = false;
   impl_->cached_valid = false;
@@ -185,21 +179,21 @@ KcfResult trackStep(KcfTracker::Impl& m, const cv::Mat& frame, bool allow_learni
 
 KcfResult KcfTracker::update(const cv::Mat& frame) {
   checkImpl(impl_);
-  checkFrame(frame, "KcfTracker::update");
+  requireFrame(frame, "KcfTracker::update");
   if (!impl_->initialized) throw std::logic_error("KcfTracker::update: not initialised");
   return trackStep(*impl_, frame, true);
 }
 
 KcfResult KcfTracker::detect(const cv::Mat& frame) {
   checkImpl(impl_);
-  checkFrame(frame, "KcfTracker::detect");
+  requireFrame(frame, "KcfTracker::detect");
   if (!impl_->initialized) throw std::logic_error("KcfTracker::detect: not initialised");
   return trackStep(*impl_, frame, false);
 }
 
 void KcfTracker::learn(const cv::Mat& frame) {
   checkImpl(impl_);
-  checkFrame(frame, "KcfTracker::learn");
+  requireFrame(frame, "KcfTracker::learn");
   if (!impl_->initialized) throw std::logic_error("KcfTracker::learn: not initialised");
   Impl& m = *impl_;
   const float eta = static_cast<float>(m.params.learning_rate);
@@ -215,7 +209,7 @@ void KcfTracker::learn(const cv::Mat& frame) {
 
 KcfResult KcfTracker::evaluate(const cv::Mat& frame, const cv::Rect2f& candidate) {
   checkImpl(impl_);
-  checkFrame(frame, "KcfTracker::evaluate");
+  requireFrame(frame, "KcfTracker::evaluate");
   checkBox(frame, candidate, "KcfTracker::evaluate");
   if (!impl_->initialized) throw std::logic_error("KcfTracker::evaluate: not initialised");
   Impl& m = *impl_;

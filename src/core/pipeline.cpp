@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "obstacle_tracker/core/frame_check.h"
 #include "obstacle_tracker/core/warmup.h"
 #include "pipeline_impl.h"
 
@@ -18,15 +19,6 @@ namespace obstacle_tracker {
 namespace core {
 
 using namespace pipeline_detail;  // NOLINT(build/namespaces): the pipeline's own constants
-
-void Pipeline::Impl::checkFrame(const cv::Mat& frame, const char* who) {
-  if (frame.empty()) throw std::invalid_argument(std::string(who) + ": empty frame");
-  if (frame.type() != CV_8UC1 && frame.type() != CV_8UC3) {
-    throw std::invalid_argument(std::string(who) +
-                                ": frame must be CV_8UC1 (grey) or CV_8UC3 (BGR), got type " +
-                                std::to_string(frame.type()));
-  }
-}
 
 void Pipeline::Impl::resetAll() {
   while (!tracks.empty()) {
@@ -66,7 +58,7 @@ void Pipeline::Impl::applyPending() {
 
 // Frame bookkeeping shared by process() and startTrack().
 void Pipeline::Impl::beginFrame(const cv::Mat& frame, double stamp, const char* who) {
-  checkFrame(frame, who);
+  requireFrame(frame, who);
   if (!std::isfinite(stamp)) throw std::invalid_argument(std::string(who) + ": stamp is not finite");
   applyPending();
   if (stamp < last_stamp || (frame_size.area() > 0 && frame.size() != frame_size)) resetAll();
@@ -200,7 +192,7 @@ const std::vector<Obstacle>& Pipeline::process(const cv::Mat& frame, double stam
 }
 
 const std::vector<Obstacle>& Pipeline::startTrack(const cv::Mat& frame, double stamp, const cv::Rect2f& box) {
-  impl_->checkFrame(frame, "Pipeline::startTrack");
+  requireFrame(frame, "Pipeline::startTrack");
   if (!usableBox(box, frame.size())) {
     throw std::invalid_argument("Pipeline::startTrack: the box must be finite, at least 1x1 px and overlap the frame");
   }
@@ -211,7 +203,7 @@ const std::vector<Obstacle>& Pipeline::startTrack(const cv::Mat& frame, double s
 void Pipeline::reset() { impl_->resetAll(); }
 
 void Pipeline::prepare(cv::Size size, int type) {
-  Impl::checkFrame(cv::Mat(1, 1, type), "Pipeline::prepare");
+  requireFrame(cv::Mat(1, 1, type), "Pipeline::prepare");
   if (size.width < kWarmupMinSide || size.height < kWarmupMinSide) return;  // nothing worth warming
   const WarmupClip clip = makeWarmupClip(size, type);
   const int next_id = impl_->next_id;

@@ -191,7 +191,6 @@ struct Pipeline::Impl {
   cv::Size frame_size;
   bool autoinit_fresh = true;
   // pipeline.cpp
-  static void checkFrame(const cv::Mat& frame, const char* who);
   void resetAll();
   void applyPending();
   void beginFrame(const cv::Mat& frame, double stamp, const char* who);

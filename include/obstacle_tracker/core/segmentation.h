@@ -36,6 +36,10 @@ class MbdSaliency {
   void compute(const cv::Mat& image, const Params& params, cv::Mat& out);
 
  private:
+  void sumChannels(const cv::Mat& dist, int cn, cv::Mat& f);
+  void addBackgroundness(const cv::Mat& src, cv::Mat& f);
+  void postprocess(cv::Mat& out);
+
   MatArena lab_, median_, dist_, upper_, lower_, fmap_, fbg_, tmp_a_, tmp_b_;
 };
 
