@@ -99,8 +99,25 @@ cv::Rect2f ExtentGrower::grow(const cv::Mat& frame, const cv::Rect2f& core, doub
   if (peak <= level) return core;  // the core does not stand out of the background
   const int threshold = static_cast<int>(std::floor(level));  // object: c > threshold
 
-  // Region growing from the core's object pixels; visited pixels are set to 0. The queue holds
-  // each window pixel at most once.
+  cv::Rect object;
+  if (!growRegion(c, cv::Rect(cv::Point(cx0, cy0), cv::Point(cx1, cy1)), threshold, object)) return core;
+  // The union of the core box and the object's box.
+  const float ox0 = std::min(core.x, static_cast<float>(wx0 + object.x));
+  const float oy0 = std::min(core.y, static_cast<float>(wy0 + object.y));
+  const float ox1 = std::max(core.x + core.width, static_cast<float>(wx0 + object.x + object.width));
+  const float oy1 = std::max(core.y + core.height, static_cast<float>(wy0 + object.y + object.height));
+  const cv::Rect2f grown(ox0, oy0, ox1 - ox0, oy1 - oy0);
+  if (grown.area() > kMaxGrowth * core.area()) return core;
+  return grown;
+}
+
+// Region growing in the contrast image `c` from the core's pixels above `threshold`; visited pixels
+// are set to 0. The queue holds each window pixel at most once. False when the core has no such
+// pixel or the region reaches the window's edge (joined to the surroundings); else `bounds` is the
+// region's box in window pixels.
+bool ExtentGrower::growRegion(cv::Mat& c, const cv::Rect& core, int threshold, cv::Rect& bounds) {
+  const int w = c.cols, h = c.rows;
+  const int cx0 = core.x, cy0 = core.y, cx1 = core.x + core.width, cy1 = core.y + core.height;
   if (queue_.capacity() < static_cast<std::size_t>(w) * h) queue_.reserve(static_cast<std::size_t>(w) * h);
   queue_.clear();
   for (int y = cy0; y < cy1; ++y) {
@@ -112,7 +129,7 @@ cv::Rect2f ExtentGrower::grow(const cv::Mat& frame, const cv::Rect2f& core, doub
       }
     }
   }
-  if (queue_.empty()) return core;
+  if (queue_.empty()) return false;
   int minx = w, miny = h, maxx = -1, maxy = -1;
   for (std::size_t i = 0; i < queue_.size(); ++i) {
     const int x = queue_[i] % w, y = queue_[i] / w;
@@ -120,7 +137,7 @@ cv::Rect2f ExtentGrower::grow(const cv::Mat& frame, const cv::Rect2f& core, doub
     maxx = std::max(maxx, x);
     miny = std::min(miny, y);
     maxy = std::max(maxy, y);
-    if (x == 0 || y == 0 || x == w - 1 || y == h - 1) return core;  // joined to the surroundings
+    if (x == 0 || y == 0 || x == w - 1 || y == h - 1) return false;  // joined to the surroundings
     for (int dy = -1; dy <= 1; ++dy) {
       uchar* row = c.ptr<uchar>(y + dy);
       for (int dx = -1; dx <= 1; ++dx) {
@@ -131,13 +148,8 @@ cv::Rect2f ExtentGrower::grow(const cv::Mat& frame, const cv::Rect2f& core, doub
       }
     }
   }
-  const float ox0 = std::min(core.x, static_cast<float>(wx0 + minx));
-  const float oy0 = std::min(core.y, static_cast<float>(wy0 + miny));
-  const float ox1 = std::max(core.x + core.width, static_cast<float>(wx0 + maxx + 1));
-  const float oy1 = std::max(core.y + core.height, static_cast<float>(wy0 + maxy + 1));
-  const cv::Rect2f grown(ox0, oy0, ox1 - ox0, oy1 - oy0);
-  if (grown.area() > kMaxGrowth * core.area()) return core;
-  return grown;
+  bounds = cv::Rect(cv::Point(minx, miny), cv::Point(maxx + 1, maxy + 1));
+  return true;
 }
 
 }  // namespace core

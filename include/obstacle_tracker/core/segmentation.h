@@ -92,6 +92,8 @@ class ExtentGrower {
   cv::Rect2f grow(const cv::Mat& frame, const cv::Rect2f& core, double contrast);
 
  private:
+  bool growRegion(cv::Mat& c, const cv::Rect& core, int threshold, cv::Rect& bounds);
+
   MatArena contrast_arena_;
   std::vector<int> queue_;
 };
