@@ -231,7 +231,7 @@ bool AutoInitializer::Impl::keepCandidate(Candidate& c, int cols, double max_are
     // Kept, flagged: an obstacle on a collision course keeps its bearing and changes only at
     // its rim, so it looks still too; it can be confirmed by growth, never by motion.
     // (The growth cue lives in the motion test: with auto_init_min_motion 0 there is no
-    // cue to hold them back, so they are dropped as before.)
+    // cue to hold them back, so they are dropped.)
     c.still = still_px >= kStillShare * c.box.area() || still_region >= kStillShare * c.area;
     if (c.still && (params.auto_init_min_growth <= 0.0 || params.auto_init_min_motion <= 0.0)) return false;
   }

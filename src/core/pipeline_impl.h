@@ -35,7 +35,9 @@
 // stays), and in a re-detection a second well-separated salient region that verifies poorly
 // against the model (a split) starts a new track when there is room.
 //
-// Reported confidence = KcfResult::confidence (mapping in kcf.h) of the frame's final answer.
+// Reported confidence = KcfResult::confidence (mapping in kcf.h) of the frame's final answer,
+// capped at learn_threshold while re-detecting and while the box has lost the contrasted object
+// the filter started on (target_contrast.h); 0 when lost.
 #pragma once
 
 #include <algorithm>
@@ -207,7 +209,7 @@ struct Pipeline::Impl {
   int chooseCandidate(Track& t, const cv::Mat& frame, KcfResult& chosen);
   void noteSplit(int best);
   bool restartOn(Track& t, const cv::Mat& frame, double stamp, const cv::Rect2f& region,
-                 const KcfResult& verification);
+                 const KcfResult& verified_result);
   float goodPeak(const Track& t) const;
   float acceptPeak(const Track& t) const;
   void configureFilter(Track& t, bool learn);

@@ -16,7 +16,7 @@ using namespace pipeline_detail;  // NOLINT(build/namespaces): the pipeline's ow
 void Pipeline::Impl::acceptGood(Track& t, const cv::Rect2f& box, double stamp) {
   const double dt = stamp - t.motion.good_stamp;
   // Stamps microseconds apart (or a huge jump) give no usable velocity: a float overflow to
-  // infinity here became a NaN box in predict() (fuzz_pipeline, test_robust_fuzz.cpp).
+  // infinity here would make a NaN box in predict() (fuzz_pipeline, test_robust_fuzz.cpp).
   if (dt > kMinVelocityDt) {
     const cv::Point2f v = (boxCentre(box) - boxCentre(t.motion.good_box)) * static_cast<float>(1.0 / dt);
     if (std::isfinite(v.x) && std::isfinite(v.y)) {
@@ -149,7 +149,7 @@ void Pipeline::Impl::noteSplit(int best) {
 
 // Restarts the filter on a re-detected region (the paper's re-initialisation on the new box).
 bool Pipeline::Impl::restartOn(Track& t, const cv::Mat& frame, double stamp, const cv::Rect2f& region,
-                               const KcfResult& verification) {
+                               const KcfResult& verified_result) {
   // The salient region's own box, so the box takes the object's current size and shape (the
   // paper's re-initialisation), grown from the region's bright core to the object's extent.
   cv::Rect2f box = extent.grow(frame, region, params.extent_contrast);
@@ -166,7 +166,7 @@ bool Pipeline::Impl::restartOn(Track& t, const cv::Mat& frame, double stamp, con
   t.kcf.init(frame, box);
   t.contrast_ref = contrast.measure(frame, box);
   t.looming.restart(frame, stamp, box);
-  t.result = verification;
+  t.result = verified_result;
   t.result.box = box;
   t.result.model_updated = true;
   acceptGood(t, box, stamp);
@@ -245,7 +245,8 @@ void Pipeline::Impl::step(Track& t, const cv::Mat& frame, double stamp) {
     acceptGood(t, r.box, stamp);
     // A peak on a box that no longer holds the contrasted object it started on is the filter
     // following the background (target_contrast.h): reported as no better than re-detecting.
-    if (TargetContrast::lost(t.contrast_ref, contrast.measure(frame, r.box))) {
+    if (t.contrast_ref >= TargetContrast::kMinReference &&
+        TargetContrast::lost(t.contrast_ref, contrast.measure(frame, r.box))) {
       t.result.confidence = std::min(t.result.confidence, static_cast<float>(params.learn_threshold));
     }
     return;

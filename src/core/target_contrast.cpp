@@ -1,7 +1,7 @@
 // Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
 //
-// TargetContrast (target_contrast.h): the object's contrast against the robust statistics of a
-// ring around its box, the same statistics ExtentGrower (extent.cpp) grows an object on.
+// TargetContrast (target_contrast.h): the object's contrast against robust statistics (median,
+// MAD) of a ring around its box, as ExtentGrower (extent.cpp) measures a core's surroundings.
 #include "obstacle_tracker/core/target_contrast.h"
 
 #include <algorithm>
@@ -18,67 +18,82 @@ namespace {
 constexpr double kMadToSigma = 1.4826;
 constexpr int kMinRingPixels = 16;
 
+// Calls visit(pixel) for the window's pixels outside `inside` on a grid of `step` from the
+// window's corner; returns how many.
+template <typename Visit>
+int sampleRing(const cv::Mat& frame, const cv::Rect& window, const cv::Rect& inside, int step, Visit visit) {
+  const int channels = frame.channels();
+  int count = 0;
+  for (int y = window.y; y < window.y + window.height; y += step) {
+    const uchar* row = frame.ptr<uchar>(y);
+    const bool box_row = y >= inside.y && y < inside.y + inside.height;
+    for (int x = window.x; x < window.x + window.width; x += step) {
+      if (box_row && x >= inside.x && x < inside.x + inside.width) {
+        while (x + step < inside.x + inside.width) x += step;  // jump over the box
+        continue;
+      }
+      visit(row + x * channels);
+      ++count;
+    }
+  }
+  return count;
+}
+
 }  // namespace
 
 float TargetContrast::measure(const cv::Mat& frame, const cv::Rect2f& box) const {
-  if (frame.empty() || (frame.type() != CV_8UC1 && frame.type() != CV_8UC3)) return 0.0f;
+  if (frame.empty() || (frame.type() != CV_8UC1 && frame.type() != CV_8UC3)) return kUnknown;
   if (!std::isfinite(box.x) || !std::isfinite(box.y) || !std::isfinite(box.width) ||
       !std::isfinite(box.height) || box.width < 1.0f || box.height < 1.0f) {
-    return 0.0f;
+    return kUnknown;
   }
   const float fw = static_cast<float>(frame.cols), fh = static_cast<float>(frame.rows);
   auto clampX = [&](float v) { return static_cast<int>(std::min(std::max(v, 0.0f), fw)); };
   auto clampY = [&](float v) { return static_cast<int>(std::min(std::max(v, 0.0f), fh)); };
   const float margin = std::max(kMinMargin, 0.5f * std::max(box.width, box.height));
-  const int wx0 = clampX(std::floor(box.x - margin)), wy0 = clampY(std::floor(box.y - margin));
-  const int wx1 = clampX(std::ceil(box.x + box.width + margin));
-  const int wy1 = clampY(std::ceil(box.y + box.height + margin));
-  const int bx0 = clampX(std::round(box.x)), by0 = clampY(std::round(box.y));
-  const int bx1 = clampX(std::round(box.x + box.width)), by1 = clampY(std::round(box.y + box.height));
-  if (bx1 <= bx0 || by1 <= by0) return 0.0f;
+  const cv::Rect window(cv::Point(clampX(std::floor(box.x - margin)), clampY(std::floor(box.y - margin))),
+                        cv::Point(clampX(std::ceil(box.x + box.width + margin)),
+                                  clampY(std::ceil(box.y + box.height + margin))));
+  const cv::Rect inside(cv::Point(clampX(std::round(box.x)), clampY(std::round(box.y))),
+                        cv::Point(clampX(std::round(box.x + box.width)), clampY(std::round(box.y + box.height))));
+  if (inside.area() <= 0) return kUnknown;
+  // The ring is sampled on a grid of the window, the box on its own grid (an object thinner than
+  // the ring's step must not fall between sampled rows).
+  const int ring_step = std::max(1, (std::max(window.width, window.height) + kMaxSamples - 1) / kMaxSamples);
+  const int box_step = std::max(1, (std::max(inside.width, inside.height) + kMaxBoxSamples - 1) / kMaxBoxSamples);
   const int channels = frame.channels();
-  const int step = std::max(1, (std::max(wx1 - wx0, wy1 - wy0) + kMaxSamples - 1) / kMaxSamples);
-  auto inBox = [&](int x, int y) { return x >= bx0 && x < bx1 && y >= by0 && y < by1; };
 
-  std::array<GreyHistogram, 3> hist{};
-  int ring_count = 0;
-  for (int y = wy0; y < wy1; y += step) {
-    const uchar* row = frame.ptr<uchar>(y);
-    for (int x = wx0; x < wx1; x += step) {
-      if (inBox(x, y)) {
-        while (x + step < bx1) x += step;  // jump over the box
-        continue;
-      }
-      for (int ch = 0; ch < channels; ++ch) ++hist[static_cast<std::size_t>(ch)][row[x * channels + ch]];
-      ++ring_count;
-    }
-  }
-  if (ring_count < kMinRingPixels) return 0.0f;
+  std::array<GreyHistogram, 3> ring_levels{};
+  const int ring_count = sampleRing(frame, window, inside, ring_step, [&](const uchar* px) {
+    for (int ch = 0; ch < channels; ++ch) ++ring_levels[static_cast<std::size_t>(ch)][px[ch]];
+  });
+  if (ring_count < kMinRingPixels) return kUnknown;
   std::array<int, 3> bg{0, 0, 0};
   for (int ch = 0; ch < channels; ++ch) {
-    bg[static_cast<std::size_t>(ch)] = histogramQuantile(hist[static_cast<std::size_t>(ch)], ring_count, 0.5);
+    const auto c = static_cast<std::size_t>(ch);
+    bg[c] = histogramQuantile(ring_levels[c], ring_count, 0.5);
   }
-
+  auto contrastOf = [&](const uchar* px) {
+    int v = 0;
+    for (int ch = 0; ch < channels; ++ch) v = std::max(v, std::abs(static_cast<int>(px[ch]) - bg[static_cast<std::size_t>(ch)]));
+    return static_cast<std::size_t>(v);
+  };
   GreyHistogram ring_hist{}, box_hist{};
-  for (int y = wy0; y < wy1; y += step) {
+  sampleRing(frame, window, inside, ring_step, [&](const uchar* px) { ++ring_hist[contrastOf(px)]; });
+  int box_count = 0;
+  for (int y = inside.y; y < inside.y + inside.height; y += box_step) {
     const uchar* row = frame.ptr<uchar>(y);
-    for (int x = wx0; x < wx1; x += step) {
-      int v = 0;
-      for (int ch = 0; ch < channels; ++ch) {
-        v = std::max(v, std::abs(static_cast<int>(row[x * channels + ch]) - bg[static_cast<std::size_t>(ch)]));
-      }
-      ++(inBox(x, y) ? box_hist : ring_hist)[static_cast<std::size_t>(v)];
+    for (int x = inside.x; x < inside.x + inside.width; x += box_step, ++box_count) {
+      ++box_hist[contrastOf(row + x * channels)];
     }
   }
   const double noise = std::max(1.0, kMadToSigma * histogramGroupedMedian(ring_hist, ring_count));
-  int box_count = 0;
-  for (const int n : box_hist) box_count += n;
   const int rank = std::max(kSignalRank, box_count / kSignalShareInverse);
   return static_cast<float>(histogramRankFromTop(box_hist, rank) / noise);
 }
 
 bool TargetContrast::lost(float reference, float current) {
-  return reference >= kMinReference && current < std::min(kFloor, kKeepShare * reference);
+  return reference >= kMinReference && current != kUnknown && current < kFloor;
 }
 
 }  // namespace core

@@ -75,9 +75,7 @@ SceneRun runScene(const std::string& name, int frames, bool gt_start, const core
 }  // namespace
 
 TEST(PipelineScenes, DemoFromGroundTruth) {
-  // An approach: the box lags the growth (ApproachTimeToContact). Measured 1.000 / 0.417 since
-  // the scale self-calibration (kcf_scale.cpp; 0.468 before it, while the generated crossing went
-  // 0.62 -> 0.83 and the dev clips 0.508 -> 0.544 AUC).
+  // An approach: the box lags the growth (ApproachTimeToContact); measured 1.000 / 0.417.
   const SceneRun r = runScene("demo", 150, true);
   EXPECT_GE(r.scores.precision20, 0.90);
   EXPECT_GE(r.scores.auc, 0.40);

@@ -11,30 +11,31 @@ namespace core {
 // small-target detection in infrared and sky images. Background: per channel, the median of a
 // ring around the box (margin = half the box's longer side, at least kMinMargin px); contrast of a
 // pixel: its largest channel difference to that background; noise: 1.4826 x the median contrast
-// on the ring (MAD, at least one grey level); signal: the contrast that the brightest 1 % of the
-// box's pixels, and at least kSignalRank of them, reach (a hot pixel alone is not an object). A box
-// on plain sky or sensor noise measures about 2-2.6 (the 99th percentile of |Gaussian noise| is
-// 2.58 sigma); a small aircraft or drone in it many times more. Windows wider than kMaxSamples px
-// are read every k-th pixel and row (bounded cost for a near obstacle at 1080p).
-// No heap allocation; frame CV_8UC1 or CV_8UC3; a box that leaves too little ring inside the
-// frame, or bad input, measures 0 (unknown).
+// on the ring (MAD as a grouped median, at least one grey level); signal: the contrast that the
+// brightest 1 % of the box's pixels, and at least kSignalRank of them, reach (a hot pixel alone is
+// not an object). A box on plain sky or sensor noise measures about 2-2.6 (the 99th percentile of
+// |Gaussian noise| is 2.58 sigma); a small aircraft or drone in it many times more. The ring is
+// read on a grid of at most kMaxSamples per side, the box on its own grid of at most
+// kMaxBoxSamples (bounded cost for a near obstacle at 1080p; a thin object is still seen).
+// No heap allocation; frame CV_8UC1 or CV_8UC3. kUnknown for bad input, a box outside the frame,
+// or too little ring inside the frame (a box that covers the view: an obstacle about to hit).
 //
 // Why the pipeline needs it: a correlation filter started on a small target in a box mostly of
 // sky learns mostly sky; under a pan it can follow the sky's texture (clouds, the sensor's fixed
 // pattern) with a perfect peak while the target flies on. The peak cannot tell; the box's
-// contrast can: lost() is true when a box that started on a contrasted object holds nothing
-// that stands out any more, and the reported confidence is then capped (pipeline_tracking.cpp).
+// contrast can: lost() is true when a box that started on a contrasted object (at least
+// kMinReference) holds nothing out of the noise any more (under kFloor), and the reported
+// confidence is then capped (pipeline_tracking.cpp). An object whose contrast merely fades stays
+// found; unknown is never lost.
 class TargetContrast {
  public:
+  static constexpr float kUnknown = -1.0f;
   static constexpr float kMinMargin = 4.0f;
   static constexpr int kSignalRank = 4;
   static constexpr int kSignalShareInverse = 100;  // the brightest 1 %
   static constexpr int kMaxSamples = 128;
-  // lost(): the check applies to objects that measured at least kMinReference at their start;
-  // they are lost when the box measures under kKeepShare x that and under kFloor (nothing stands
-  // out of the noise; an object whose contrast merely fades stays found).
+  static constexpr int kMaxBoxSamples = 512;
   static constexpr float kMinReference = 6.0f;
-  static constexpr float kKeepShare = 0.5f;
   static constexpr float kFloor = 3.0f;
 
   float measure(const cv::Mat& frame, const cv::Rect2f& box) const;
