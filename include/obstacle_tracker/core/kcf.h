@@ -22,7 +22,7 @@ struct KcfResult {
   bool model_updated = false;
 };
 
-// Confidence mapping (also in README "Tracker (KCF)"):
+// Confidence mapping (also in docs/algorithms.md, "Tracker (KCF)"):
 //   c_peak = clamp((peak) / kConfidencePeakFull, 0, 1)
 //   c_psr  = clamp((psr - kConfidencePsrZero) / (kConfidencePsrFull - kConfidencePsrZero), 0, 1)
 //   confidence = sqrt(c_peak * c_psr)
@@ -39,7 +39,7 @@ class KcfTracker {
  public:
   struct Impl;
 
-  // Calibrated on the 10 dev clips (README "Tracker (KCF)"): frames tracked within 20 px have
+  // Calibrated on the 10 dev clips (docs/algorithms.md, "Tracker (KCF)"): frames tracked within 20 px have
   // peak >= 0.15 and PSR >= 12 in 95 % of cases (confidence >= 0.48); at the onset of a failure
   // peak ~0.05-0.13 and PSR ~5-11 (confidence <= 0.38).
   static constexpr float kConfidencePeakFull = 0.35f;
