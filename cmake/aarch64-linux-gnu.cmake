@@ -1,6 +1,7 @@
 # Cross-build for ARM64 (aarch64) companion computers with Debian's multiarch packages:
 #   apt-get install g++-aarch64-linux-gnu qemu-user libopencv-core-dev:arm64 \
-#     libopencv-imgproc-dev:arm64 libopencv-video406:arm64 libopencv-calib3d406:arm64 libgtest-dev:arm64
+#     libopencv-imgproc-dev:arm64 libopencv-video406:arm64 libopencv-calib3d406:arm64 libgtest-dev:arm64 \
+#     libyaml-cpp0.7:arm64
 #   cmake -S . -B _build/arm64 -DCMAKE_TOOLCHAIN_FILE=cmake/aarch64-linux-gnu.cmake -DOT_CORE_ONLY=ON
 # The test programs run under qemu-user (CMAKE_CROSSCOMPILING_EMULATOR), so ctest works as usual.
 # Debian's arm64 OpenCV packages ship no CMake config and imgcodecs/videoio:arm64 cannot be

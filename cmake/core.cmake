@@ -1,10 +1,22 @@
-# The ROS-free core: OpenCV + Eigen + the standard library. Every .cpp in src/core belongs to it.
+# The ROS-free core: OpenCV (core, imgproc, video, calib3d), Eigen, yaml-cpp (parameter files)
+# and the standard library. Every .cpp in src/core belongs to it.
+# yaml-cpp is found by hand rather than through its CMake config so that cross-builds work:
+# libyaml-cpp-dev cannot be installed for two architectures at once, so an arm64 build links the
+# runtime package (libyaml-cpp0.7:arm64) with the architecture-independent headers of the host's.
+find_path(OT_YAML_CPP_INCLUDE_DIR yaml-cpp/yaml.h REQUIRED)
+find_library(OT_YAML_CPP_LIB NAMES yaml-cpp libyaml-cpp.so.0.7 REQUIRED)
 file(GLOB OT_CORE_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/core/*.cpp)
 add_library(obstacle_tracker_core ${OT_CORE_SOURCES})
 target_include_directories(obstacle_tracker_core PUBLIC
   $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/include> $<INSTALL_INTERFACE:include>)
 target_include_directories(obstacle_tracker_core SYSTEM PUBLIC ${OpenCV_INCLUDE_DIRS} ${EIGEN3_INCLUDE_DIR})
-target_link_libraries(obstacle_tracker_core PUBLIC ${OpenCV_LIBS})
+target_include_directories(obstacle_tracker_core SYSTEM PRIVATE ${OT_YAML_CPP_INCLUDE_DIR})
+# Only the modules the core includes; the tools and the nodelet link what else they use.
+set(OT_CORE_OPENCV_LIBS opencv_core opencv_imgproc opencv_video opencv_calib3d)
+if(OT_OPENCV_MINIMAL)
+  set(OT_CORE_OPENCV_LIBS ${OpenCV_LIBS})
+endif()
+target_link_libraries(obstacle_tracker_core PUBLIC ${OT_CORE_OPENCV_LIBS} PRIVATE ${OT_YAML_CPP_LIB})
 set_target_properties(obstacle_tracker_core PROPERTIES POSITION_INDEPENDENT_CODE ON)
 
 # Synthetic flight scenes (tests, demo, benchmarks): src/scene. scene_io writes image files.
@@ -14,7 +26,7 @@ if(NOT OT_WITH_IMAGE_IO)
 endif()
 if(OT_SCENE_SOURCES)
   add_library(obstacle_tracker_scene ${OT_SCENE_SOURCES})
-  target_link_libraries(obstacle_tracker_scene PUBLIC obstacle_tracker_core)
+  target_link_libraries(obstacle_tracker_scene PUBLIC obstacle_tracker_core ${OpenCV_LIBS})
   set_target_properties(obstacle_tracker_scene PROPERTIES POSITION_INDEPENDENT_CODE ON)
   list(APPEND OT_LIBS obstacle_tracker_scene)
 endif()
@@ -27,7 +39,7 @@ if(NOT OT_WITH_IMAGE_IO)
 endif()
 if(OT_EVAL_SOURCES)
   add_library(obstacle_tracker_eval ${OT_EVAL_SOURCES})
-  target_link_libraries(obstacle_tracker_eval PUBLIC obstacle_tracker_core)
+  target_link_libraries(obstacle_tracker_eval PUBLIC obstacle_tracker_core ${OpenCV_LIBS})
   set_target_properties(obstacle_tracker_eval PROPERTIES POSITION_INDEPENDENT_CODE ON)
   list(APPEND OT_LIBS obstacle_tracker_eval)
 endif()

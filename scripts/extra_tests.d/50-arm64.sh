@@ -18,7 +18,7 @@ SUDO=""
 if [ "$(id -u)" -ne 0 ]; then SUDO=sudo; fi
 
 PACKAGES=(g++-aarch64-linux-gnu qemu-user libopencv-core-dev:arm64 libopencv-imgproc-dev:arm64
-  libopencv-video406:arm64 libopencv-calib3d406:arm64 libgtest-dev:arm64)
+  libopencv-video406:arm64 libopencv-calib3d406:arm64 libgtest-dev:arm64 libyaml-cpp0.7:arm64)
 missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
