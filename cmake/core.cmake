@@ -46,14 +46,18 @@ endif()
 list(APPEND OT_LIBS obstacle_tracker_core)
 
 # Command-line tools: each src/tools/NAME.cpp is the main of the executable NAME, linked with
-# every library above. Under catkin they land in devel/lib/obstacle_tracker (rosrun finds them).
+# every library above; a tool too large for one file keeps its other parts in src/tools/NAME/
+# (included as "NAME/part.h"). Under catkin they land in devel/lib/obstacle_tracker (rosrun
+# finds them).
 file(GLOB OT_TOOL_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/tools/*.cpp)
 if(NOT OT_WITH_IMAGE_IO)  # the tools that read no image file
   list(FILTER OT_TOOL_SOURCES INCLUDE REGEX "/(print_params|scene_boxes)\\.cpp$")
 endif()
 foreach(src ${OT_TOOL_SOURCES})
   get_filename_component(name ${src} NAME_WE)
-  add_executable(${name} ${src})
+  file(GLOB parts CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/tools/${name}/*.cpp)
+  add_executable(${name} ${src} ${parts})
+  target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/src/tools)
   target_link_libraries(${name} ${OT_LIBS})
   if(OT_TOOL_OUTPUT_DIR)
     set_target_properties(${name} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${OT_TOOL_OUTPUT_DIR})
