@@ -1,0 +1,18 @@
+// Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
+//
+// How the evaluate tool prints numbers in its tables, CSV files and log.
+#pragma once
+
+#include <string>
+
+namespace obstacle_tracker {
+namespace evaluate_tool {
+
+// Fixed-point with `decimals` digits; "-" for NaN and infinities.
+std::string formatNumber(double value, int decimals = 3);
+
+// Frames per second: whole numbers from 100 up, one decimal below; "-" when not positive.
+std::string formatFps(double fps);
+
+}  // namespace evaluate_tool
+}  // namespace obstacle_tracker
