@@ -1,6 +1,10 @@
 // Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
 //
-// The scene generator's private state, shared by its source files.
+// The scene generator's private state, shared by its source files:
+//   scene_setup.cpp      builds a scene from its name (scenery, obstacles, camera, noise tables);
+//   scene_scenarios.cpp  the obstacles of each base scenario;
+//   scene_modifiers.cpp  the modifiers that change the scene at set-up;
+//   scene_generator.cpp  draws, composes and finishes the frames.
 // Every random draw and every float operation is in a fixed order: the same scene gives the same
 // bytes on any machine (scene_generator.h), so moving code between these files must keep it.
 #pragma once
@@ -67,10 +71,35 @@ struct SceneGenerator::Impl {
     double total = 0.0;
   };
 
+  // The modifiers of the scenario name.
   struct Flags {
     bool jitter = false, jerk = false, blur = false, noise = false, illumination = false, occlusion = false;
     bool flock = false, overlay = false, glare = false, clutter = false, small = false, large = false;
     int cls = -1;
+  };
+
+  // Where the scenery put the horizon and the sun (frame coordinates of an unmoved camera).
+  struct SceneryLayout {
+    double horizon = 0.0;
+    cv::Point2d sun;
+  };
+
+  // What a base scenario places its obstacles with.
+  struct ObstaclePlacement {
+    double width = 0.0, height = 0.0;  // frame size, px
+    double duration = 0.0;             // s
+    double horizon = 0.0;              // frame row of the horizon
+    double sky_y = 0.0;                // a typical obstacle row
+    double size_mult = 1.0;            // the small / large modifiers
+    int cls = -1;                      // the as_* modifiers; -1: the scenario's own class
+    ObstacleClass mainClass(ObstacleClass own) const { return cls >= 0 ? static_cast<ObstacleClass>(cls) : own; }
+  };
+
+  using PlaceObstacles = void (Impl::*)(const ObstaclePlacement& at, Rng& rng);
+  struct BaseScenario {
+    const char* name;
+    int default_frames;
+    PlaceObstacles place;
   };
 
   ScenarioConfig cfg;
@@ -78,6 +107,7 @@ struct SceneGenerator::Impl {
   int frames = 0, W = 0, H = 0;
   double fps = 30.0, f_px = 0.0, duration = 0.0;
   bool mono16 = false;
+  std::string base_name;
   Flags flags;
 
   BackgroundSpec bg;
@@ -113,7 +143,42 @@ struct SceneGenerator::Impl {
     return {static_cast<float>(d.x), static_cast<float>(d.y)};
   }
 
+  // Set-up (scene_setup.cpp).
   void setup();
+  const BaseScenario& parseName();
+  void setModifierFlag(const std::string& modifier);
+  SceneryLayout chooseScenery();
+  void placeObstacles(const BaseScenario& scenario, double horizon);
+  void addTrack(int id, ObstacleClass c, std::function<TrackPose(double)> fn, bool distractor = false);
+  void setClosingSpeeds();
+  void renderPanorama(const SceneryLayout& layout);
+  void makeNoiseTables();
+  void fillObstacleInfo();
+
+  // Base scenarios (scene_scenarios.cpp).
+  static const BaseScenario& findBaseScenario(const std::string& name);
+  void placeCollisionCourse(const ObstaclePlacement& at, Rng& rt, double span_frac, double ratio);
+  void placeApproach(const ObstaclePlacement& at, Rng& rt);
+  void placeDemo(const ObstaclePlacement& at, Rng& rt);
+  void placeCrossing(const ObstaclePlacement& at, Rng& rt);
+  void placeRotation(const ObstaclePlacement& at, Rng& rt);
+  void placeOutOfView(const ObstaclePlacement& at, Rng& rt);
+  void placeMulti(const ObstaclePlacement& at, Rng& rt);
+  void placeBird(const ObstaclePlacement& at, Rng& rt);
+  void placeTiny(const ObstaclePlacement& at, Rng& rt);
+
+  // Modifiers applied at set-up (scene_modifiers.cpp).
+  double raiseHorizon(Rng& rb);
+  void chooseNoiseLevels();
+  void addErraticMotion();
+  void addGlare(SceneryLayout& layout);
+  void addFlock();
+  void addOcclusion();
+  void addJitter();
+  void addJerks();
+  cv::Rect2f mainBoundsAt(double t) const;
+
+  // Frames (scene_generator.cpp).
   void rasterize(int track_index, double t, const cv::Point2d& cam, const std::vector<cv::Point>& blur_off, Rendered& ro);
   void computeObjects(int i);
   template <typename T, int CN>

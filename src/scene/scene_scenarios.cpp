@@ -1,0 +1,209 @@
+// Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
+//
+// The base scenarios: for each name, its default length and the obstacles it places. Each
+// obstacle is a path t -> pose, a closure that copies its parameters: it outlives the set-up.
+#include <algorithm>
+#include <stdexcept>
+
+#include "scene_generator_impl.h"
+
+namespace obstacle_tracker {
+namespace scene {
+
+namespace {
+
+// Flapping with glides: amplitude modulated by a slow envelope.
+float flapAt(double t, double freq, double phase) {
+  const double env = 0.55 + 0.45 * sinTurn(0.17 * t + phase);
+  return static_cast<float>(0.2 + 0.65 * env * sinTurn(freq * t + phase));
+}
+
+}  // namespace
+
+const SceneGenerator::Impl::BaseScenario& SceneGenerator::Impl::findBaseScenario(const std::string& name) {
+  static const BaseScenario kScenarios[] = {
+      {"demo", 240, &Impl::placeDemo},
+      {"approach", 180, &Impl::placeApproach},
+      {"crossing", 180, &Impl::placeCrossing},
+      {"rotation", 180, &Impl::placeRotation},
+      {"out_of_view", 240, &Impl::placeOutOfView},
+      {"multi", 210, &Impl::placeMulti},
+      {"bird", 150, &Impl::placeBird},
+      {"tiny", 180, &Impl::placeTiny},
+  };
+  for (const auto& s : kScenarios)
+    if (name == s.name) return s;
+  throw std::logic_error("scene: base scenario '" + name + "' is listed but has no set-up");
+}
+
+void SceneGenerator::Impl::placeDemo(const ObstaclePlacement& at, Rng& rt) { placeCollisionCourse(at, rt, 0.045, 6.0); }
+void SceneGenerator::Impl::placeApproach(const ObstaclePlacement& at, Rng& rt) { placeCollisionCourse(at, rt, 0.035, 12.0); }
+
+// The apparent size grows by `ratio` over the scene (at most to 90 % of the frame width).
+void SceneGenerator::Impl::placeCollisionCourse(const ObstaclePlacement& at, Rng& rt, double span_frac, double ratio) {
+  const double Wd = at.width, Hd = at.height, D = at.duration;
+  const ObstacleClass c = at.mainClass(ObstacleClass::kFixedWing);
+  const double span0 = span_frac * Wd * at.size_mult;
+  ratio = std::max(1.5, std::min(ratio, 0.9 * Wd / std::max(span0, 1e-6)));
+  const double T = D * ratio / (ratio - 1.0);
+  const cv::Point2d foe(Wd * (0.5 + rt.uniform(-0.12, 0.12)),
+                        flags.clutter ? at.horizon - 0.05 * Hd : Hd * (0.4 + rt.uniform(-0.06, 0.04)));
+  const double ang = rt.uniform(0.0, 2.0 * kPi);
+  const cv::Point2d off0 = cv::Point2d(detCos(ang) * 0.09 * Wd, detSin(ang) * 0.06 * Hd) * (1.0 / ratio);
+  const float yaw = static_cast<float>(0.5 * kPi + rt.uniform(-0.45, 0.45));
+  const float elev = static_cast<float>(rt.uniform(-0.18, 0.04));
+  const float bank = static_cast<float>(rt.uniform(-0.12, 0.12));
+  const double fph = rt.uniform(0, 1);
+  addTrack(1, c, [=](double t) {
+    TrackPose p;
+    const double k = T / (T - t);
+    p.pose.centre = cv::Point2f(foe + off0 * k);
+    p.pose.scale = static_cast<float>(span0 * k);
+    p.pose.yaw = yaw;
+    p.pose.elevation = elev;
+    p.pose.bank = bank;
+    p.pose.flap = flapAt(t, 3.2, fph);
+    p.ttc = T - t;
+    return p;
+  });
+  tracks.back().ttc0 = T;
+}
+
+void SceneGenerator::Impl::placeCrossing(const ObstaclePlacement& at, Rng& rt) {
+  const double Wd = at.width, Hd = at.height, D = at.duration;
+  const ObstacleClass c = at.mainClass(ObstacleClass::kFixedWing);
+  const double span = 0.16 * Wd * at.size_mult;
+  const bool ltr = rt.chance(0.5);
+  const double x0 = ltr ? 0.12 * Wd : 0.88 * Wd, x1 = ltr ? 0.88 * Wd : 0.12 * Wd;
+  const double v = (x1 - x0) / D;
+  const double y0 = at.sky_y + rt.uniform(-0.08, 0.05) * Hd;
+  const double ph = rt.uniform(0, 1);
+  const float yaw = static_cast<float>((ltr ? 0.0 : kPi) + rt.uniform(-0.35, 0.35));
+  const float elev = static_cast<float>(rt.uniform(-0.15, 0.05));
+  addTrack(1, c, [=](double t) {
+    TrackPose p;
+    p.pose.centre = cv::Point2f(static_cast<float>(x0 + v * t), static_cast<float>(y0 + 0.04 * Hd * sinTurn(0.7 * t / D + ph)));
+    p.pose.scale = static_cast<float>(span);
+    p.pose.yaw = yaw;
+    p.pose.elevation = elev;
+    p.pose.bank = static_cast<float>(0.06 * sinTurn(0.3 * t + ph));
+    p.pose.flap = flapAt(t, 3.0, ph);
+    return p;
+  });
+  // The camera pans slowly after the obstacle.
+  camera_parts.push_back([=](double t) { return cv::Point2d(0.3 * v * t, 0.0); });
+}
+
+void SceneGenerator::Impl::placeRotation(const ObstaclePlacement& at, Rng& rt) {
+  const double Wd = at.width, Hd = at.height, D = at.duration, sky_y = at.sky_y;
+  const ObstacleClass c = at.mainClass(ObstacleClass::kMultirotor);
+  const double span = 0.16 * Wd * at.size_mult;
+  const double ph = rt.uniform(0, 1), yaw0 = rt.uniform(0, 2 * kPi);
+  addTrack(1, c, [=](double t) {
+    TrackPose p;
+    p.pose.centre = cv::Point2f(static_cast<float>(0.5 * Wd + 0.12 * Wd * sinTurn(t / D + ph)),
+                                static_cast<float>(sky_y + 0.06 * Hd * sinTurn(2.0 * t / D + ph)));
+    p.pose.scale = static_cast<float>(span);
+    p.pose.yaw = static_cast<float>(yaw0 + 2.0 * kPi * t / 4.0);
+    p.pose.roll = static_cast<float>(0.6 * sinTurn(t / 5.0));
+    p.pose.elevation = static_cast<float>(-0.35 + 0.45 * sinTurn(t / 6.0 + ph));
+    p.pose.bank = static_cast<float>(0.25 * sinTurn(t / 3.0));
+    p.pose.flap = flapAt(t, 3.5, ph);
+    return p;
+  });
+}
+
+void SceneGenerator::Impl::placeOutOfView(const ObstaclePlacement& at, Rng& rt) {
+  const double Wd = at.width, Hd = at.height, D = at.duration, sky_y = at.sky_y;
+  const ObstacleClass c = at.mainClass(ObstacleClass::kMultirotor);
+  const double span = 0.1 * Wd * at.size_mult;
+  const double ph = rt.uniform(0, 1);
+  const double dir = rt.chance(0.5) ? 1.0 : -1.0;
+  addTrack(1, c, [=](double t) {
+    TrackPose p;
+    const double s = sinTurn(t / D);
+    p.pose.centre = cv::Point2f(static_cast<float>(0.5 * Wd + dir * 0.72 * Wd * s),
+                                static_cast<float>(sky_y + 0.05 * Hd * sinTurn(1.5 * t / D + ph)));
+    p.pose.scale = static_cast<float>(span);
+    p.pose.yaw = static_cast<float>(0.3 * dir);
+    p.pose.elevation = -0.3f;
+    p.pose.bank = static_cast<float>(0.25 * detCos(2.0 * kPi * t / D) * dir);
+    p.pose.flap = flapAt(t, 3.5, ph);
+    return p;
+  });
+}
+
+// Three paths crossing near the frame centre at mid-sequence, at different distances.
+void SceneGenerator::Impl::placeMulti(const ObstaclePlacement& at, Rng& rt) {
+  const double Wd = at.width, Hd = at.height, D = at.duration, size_mult = at.size_mult;
+  const double ph = rt.uniform(0, 1);
+  const double yc = at.sky_y;
+  addTrack(1, at.mainClass(ObstacleClass::kMultirotor), [=](double t) {
+    TrackPose p;
+    p.pose.centre = cv::Point2f(static_cast<float>(Wd * (0.1 + 0.8 * t / D)), static_cast<float>(yc + 0.04 * Hd * sinTurn(t / D + ph)));
+    p.pose.scale = static_cast<float>(0.09 * Wd * size_mult);
+    p.pose.yaw = 0.2f;
+    p.pose.elevation = -0.3f;
+    p.pose.bank = 0.15f;
+    p.pose.flap = 0.3f;
+    return p;
+  });
+  addTrack(2, ObstacleClass::kFixedWing, [=](double t) {
+    TrackPose p;
+    p.pose.centre = cv::Point2f(static_cast<float>(Wd * (0.92 - 0.84 * t / D)), static_cast<float>(yc - 0.05 * Hd + 0.05 * Hd * t / D));
+    p.pose.scale = static_cast<float>(0.14 * Wd);
+    p.pose.yaw = static_cast<float>(kPi - 0.25);
+    p.pose.elevation = -0.08f;
+    return p;
+  });
+  addTrack(3, ObstacleClass::kBird, [=](double t) {
+    TrackPose p;
+    p.pose.centre = cv::Point2f(static_cast<float>(Wd * (0.32 + 0.36 * t / D)), static_cast<float>(yc + Hd * (-0.3 + 0.6 * t / D)));
+    p.pose.scale = static_cast<float>(0.06 * Wd);
+    p.pose.yaw = 0.5f;
+    p.pose.elevation = -0.2f;
+    p.pose.flap = static_cast<float>(0.2 + 0.6 * sinTurn(3.8 * t));
+    return p;
+  });
+}
+
+void SceneGenerator::Impl::placeBird(const ObstaclePlacement& at, Rng& rt) {
+  const double Wd = at.width, Hd = at.height, D = at.duration, sky_y = at.sky_y;
+  const ObstacleClass c = at.mainClass(ObstacleClass::kBird);
+  const double span = 0.08 * Wd * at.size_mult;
+  const bool ltr = rt.chance(0.5);
+  const double x0 = ltr ? 0.1 * Wd : 0.9 * Wd, x1 = ltr ? 0.9 * Wd : 0.1 * Wd;
+  const double ph = rt.uniform(0, 1);
+  const float yaw = static_cast<float>((ltr ? 0.0 : kPi) + rt.uniform(-0.4, 0.4));
+  addTrack(1, c, [=](double t) {
+    TrackPose p;
+    p.pose.centre = cv::Point2f(static_cast<float>(x0 + (x1 - x0) * t / D), static_cast<float>(sky_y + 0.07 * Hd * sinTurn(0.5 * t + ph)));
+    p.pose.scale = static_cast<float>(span);
+    p.pose.yaw = yaw;
+    p.pose.elevation = -0.25f;
+    p.pose.bank = static_cast<float>(0.15 * sinTurn(0.4 * t + ph));
+    p.pose.flap = flapAt(t, 3.6, ph);
+    return p;
+  });
+}
+
+void SceneGenerator::Impl::placeTiny(const ObstaclePlacement& at, Rng& rt) {
+  const double Wd = at.width, Hd = at.height, D = at.duration;
+  const ObstacleClass c = at.mainClass(ObstacleClass::kMultirotor);
+  const double span = std::max(2.5, 0.014 * Wd * at.size_mult);
+  const double ph = rt.uniform(0, 1);
+  const double yb = at.horizon - 0.07 * Hd;
+  addTrack(1, c, [=](double t) {
+    TrackPose p;
+    p.pose.centre = cv::Point2f(static_cast<float>(Wd * (0.3 + 0.4 * t / D)), static_cast<float>(yb + 0.035 * Hd * sinTurn(0.8 * t / D + ph)));
+    p.pose.scale = static_cast<float>(span);
+    p.pose.yaw = static_cast<float>(0.3 * sinTurn(0.1 * t));
+    p.pose.elevation = -0.35f;
+    p.pose.bank = 0.1f;
+    p.pose.flap = flapAt(t, 3.5, ph);
+    return p;
+  });
+}
+
+}  // namespace scene
+}  // namespace obstacle_tracker
