@@ -4,7 +4,8 @@
 //   scene_setup.cpp      builds a scene from its name (scenery, obstacles, camera, noise tables);
 //   scene_scenarios.cpp  the obstacles of each base scenario;
 //   scene_modifiers.cpp  the modifiers that change the scene at set-up;
-//   scene_generator.cpp  draws, composes and finishes the frames.
+//   scene_rasterize.cpp  draws one obstacle over one exposure, with its ground-truth box;
+//   scene_frame.cpp      composes, finishes and measures the frames.
 // Every random draw and every float operation is in a fixed order: the same scene gives the same
 // bytes on any machine (scene_generator.h), so moving code between these files must keep it.
 #pragma once
@@ -178,11 +179,24 @@ struct SceneGenerator::Impl {
   void addJerks();
   cv::Rect2f mainBoundsAt(double t) const;
 
-  // Frames (scene_generator.cpp).
+  // One obstacle over one exposure (scene_rasterize.cpp).
+  struct Extent {
+    float x0 = 1e30f, y0 = 1e30f, x1 = -1e30f, y1 = -1e30f;
+  };
   void rasterize(int track_index, double t, const cv::Point2d& cam, const std::vector<cv::Point>& blur_off, Rendered& ro);
+  int sampleExposure(const Track& tr, double t, const TrackPose& mid, const cv::Point2d& cam, Extent& ext);
+  bool placePatch(const Extent& ext, Rendered& ro) const;
+  void drawSamples(int n, Rendered& ro);
+  void drawPlate(const ProjectedPlate& pl, const cv::Rect& patch, cv::Mat& C, cv::Mat& A);
+  void measureDrawnBox(const std::vector<cv::Point>& blur_off, Rendered& ro);
+
+  // Frames (scene_frame.cpp).
   void computeObjects(int i);
   template <typename T, int CN>
   void composite(cv::Mat& out);
+  void changeIllumination(cv::Mat& out, double t) const;
+  void addSensorNoise(cv::Mat& out, int i) const;
+  void drawOverlay(cv::Mat& out, int i, double t) const;
 };
 
 }  // namespace scene
