@@ -10,9 +10,7 @@
 #include <boost/bind/bind.hpp>
 #include <boost/make_shared.hpp>
 #include <cv_bridge/cv_bridge.h>
-#include <Eigen/Geometry>
 #include <pluginlib/class_list_macros.hpp>
-#include <tf2/exceptions.h>
 
 #include "obstacle_tracker/ros/conversions.h"
 #include "obstacle_tracker/ros/overlay.h"
@@ -25,32 +23,6 @@ std::string joined(const std::vector<std::string>& names) {
   std::string out;
   for (const std::string& n : names) out += (out.empty() ? "" : ", ") + n;
   return out;
-}
-
-// Element-wise equality where NaN equals NaN: an unchanged camera_info full of NaN must compare
-// equal to itself, or it is re-validated and re-logged on every frame.
-template <typename Array>
-bool sameValues(const Array& a, const Array& b) {
-  if (a.size() != b.size()) return false;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    if (!(a[i] == b[i] || (std::isnan(a[i]) && std::isnan(b[i])))) return false;
-  }
-  return true;
-}
-
-bool sameCalibration(const sensor_msgs::CameraInfo& a, const sensor_msgs::CameraInfo& b) {
-  return a.width == b.width && a.height == b.height && sameValues(a.K, b.K) && sameValues(a.D, b.D) &&
-         a.distortion_model == b.distortion_model && a.binning_x == b.binning_x &&
-         a.binning_y == b.binning_y && a.roi.x_offset == b.roi.x_offset &&
-         a.roi.y_offset == b.roi.y_offset && a.roi.width == b.roi.width && a.roi.height == b.roi.height;
-}
-
-// Size of the image a camera_info describes (after ROI and binning); 0 when unknown.
-void describedSize(const sensor_msgs::CameraInfo& info, std::uint32_t* width, std::uint32_t* height) {
-  const std::uint32_t bx = std::max<std::uint32_t>(1, info.binning_x);
-  const std::uint32_t by = std::max<std::uint32_t>(1, info.binning_y);
-  *width = (info.roi.width ? info.roi.width : info.width) / bx;
-  *height = (info.roi.height ? info.roi.height : info.height) / by;
 }
 
 }  // namespace
@@ -253,97 +225,121 @@ void ObstacleTrackerNodelet::prepareFor(const cv::Mat& frame) {
                1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
 }
 
+void ObstacleTrackerNodelet::countRefused(const std::string& error) {
+  std::lock_guard<std::mutex> lock(stats_mutex_);
+  ++window_.rejected;
+  ++total_.rejected;
+  last_error_ = error;
+}
+
+bool ObstacleTrackerNodelet::alreadyProcessed(const std_msgs::Header& header) {
+  if (!(have_last_ && header.stamp == last_stamp_ && header.seq == last_seq_)) return false;
+  std::lock_guard<std::mutex> lock(stats_mutex_);
+  ++duplicates_;
+  NODELET_WARN_THROTTLE(5.0, "frame (stamp %.6f, seq %u) already processed: skipped",
+                        header.stamp.toSec(), header.seq);
+  return true;
+}
+
+const cv::Mat* ObstacleTrackerNodelet::convert(const sensor_msgs::Image& image) {
+  try {
+    return &converter_.convert(image);
+  } catch (const bridge::UnsupportedEncoding& e) {
+    NODELET_ERROR_THROTTLE(5.0, "%s: frame skipped (supported: %s)", e.what(),
+                           joined(bridge::supportedEncodings()).c_str());
+    countRefused(e.what());
+  } catch (const bridge::MalformedImage& e) {
+    NODELET_ERROR_THROTTLE(5.0, "%s: frame skipped", e.what());
+    countRefused(e.what());
+  }
+  return nullptr;
+}
+
+double ObstacleTrackerNodelet::trackingStamp(const std_msgs::Header& header) {
+  if (header.stamp.isZero()) {
+    NODELET_WARN_ONCE("images carry no stamp: using the arrival time (latency figures are meaningless)");
+    return ros::Time::now().toSec();
+  }
+  if (have_last_ && header.stamp < last_stamp_) {
+    NODELET_INFO("image time went backwards (%.3f -> %.3f, e.g. a looping bag): tracks restart",
+                 last_stamp_.toSec(), header.stamp.toSec());
+  }
+  return header.stamp.toSec();
+}
+
+double ObstacleTrackerNodelet::track(const cv::Mat& frame, double stamp, core::TrackState* state) {
+  std::lock_guard<std::mutex> lock(pipeline_mutex_);
+  if (frame.size() != prepared_size_ || frame.type() != prepared_type_) prepareFor(frame);
+  const auto t0 = std::chrono::steady_clock::now();
+  obstacles_ = pipeline_->process(frame, stamp);
+  const double processing = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  *state = pipeline_->state();
+  collision_.setMaxBearingRate(pipeline_->params().collision_bearing_rate);
+  return processing;
+}
+
+void ObstacleTrackerNodelet::publishObstacles(const sensor_msgs::Image& image,
+                                              const sensor_msgs::CameraInfoConstPtr& info,
+                                              double stamp, double processing) {
+  boost::shared_ptr<ObstacleArray> out = boost::make_shared<ObstacleArray>();
+  out->header = image.header;
+  out->target_frame = target_frame_.empty() ? image.header.frame_id : target_frame_;
+  out->image_width = image.width;
+  out->image_height = image.height;
+  out->processing_time = static_cast<float>(processing);
+  out->obstacles.resize(obstacles_.size());
+  for (std::size_t i = 0; i < obstacles_.size(); ++i) bridge::toMessage(obstacles_[i], out->obstacles[i]);
+  if (info) fillGeometry(image, *info, *out);
+  markCollisionCourse(stamp, *out);
+  // The frame is processed once its answer exists: a frame that arrives after the answer (the
+  // overlay and statistics below are still being done) is kept, not dropped (frame_slot.h).
+  slot_.done();
+  obstacles_pub_.publish(out);
+}
+
+void ObstacleTrackerNodelet::publishOverlay(const sensor_msgs::Image& image, const cv::Mat& frame,
+                                            core::TrackState state, double processing) {
+  if (debug_pub_.getNumSubscribers() == 0) return;
+  char status[160];
+  std::snprintf(status, sizeof(status), "%s  obstacles: %zu  %.1f ms", core::toString(state),
+                obstacles_.size(), processing * 1e3);
+  bridge::drawOverlay(frame, obstacles_, status, overlay_);
+  debug_pub_.publish(cv_bridge::CvImage(image.header, "bgr8", overlay_).toImageMsg());
+}
+
+void ObstacleTrackerNodelet::countProcessed(const std_msgs::Header& header, double processing,
+                                            core::TrackState state) {
+  // In double: ros::Time subtraction throws when the stamp is decades away (a bad clock).
+  const double latency = header.stamp.isZero() ? 0.0 : ros::Time::now().toSec() - header.stamp.toSec();
+  std::lock_guard<std::mutex> lock(stats_mutex_);
+  for (Window* w : {&window_, &total_}) {
+    ++w->processed;
+    w->processing_sum += processing;
+    w->processing_max = std::max(w->processing_max, processing);
+    w->latency_sum += latency;
+    w->latency_max = std::max(w->latency_max, latency);
+  }
+  last_state_ = state;
+  last_obstacle_count_ = obstacles_.size();
+}
+
 void ObstacleTrackerNodelet::process(const sensor_msgs::ImageConstPtr& image,
                                      const sensor_msgs::CameraInfoConstPtr& info) {
   const std::string& encoding = image->encoding;
   std::string error;
   try {
-    if (have_last_ && image->header.stamp == last_stamp_ && image->header.seq == last_seq_) {
-      std::lock_guard<std::mutex> lock(stats_mutex_);
-      ++duplicates_;
-      NODELET_WARN_THROTTLE(5.0, "frame (stamp %.6f, seq %u) already processed: skipped",
-                            image->header.stamp.toSec(), image->header.seq);
-      return;
-    }
-    const cv::Mat* frame = nullptr;
-    try {
-      frame = &converter_.convert(*image);
-    } catch (const bridge::UnsupportedEncoding& e) {
-      NODELET_ERROR_THROTTLE(5.0, "%s: frame skipped (supported: %s)", e.what(),
-                             joined(bridge::supportedEncodings()).c_str());
-      std::lock_guard<std::mutex> lock(stats_mutex_);
-      ++window_.rejected;
-      ++total_.rejected;
-      last_error_ = e.what();
-      return;
-    } catch (const bridge::MalformedImage& e) {
-      NODELET_ERROR_THROTTLE(5.0, "%s: frame skipped", e.what());
-      std::lock_guard<std::mutex> lock(stats_mutex_);
-      ++window_.rejected;
-      ++total_.rejected;
-      last_error_ = e.what();
-      return;
-    }
-
-    double stamp = image->header.stamp.toSec();
-    if (image->header.stamp.isZero()) {
-      NODELET_WARN_ONCE("images carry no stamp: using the arrival time (latency figures are meaningless)");
-      stamp = ros::Time::now().toSec();
-    } else if (have_last_ && image->header.stamp < last_stamp_) {
-      NODELET_INFO("image time went backwards (%.3f -> %.3f, e.g. a looping bag): tracks restart",
-                   last_stamp_.toSec(), image->header.stamp.toSec());
-    }
-
-    double processing = 0.0;
+    if (alreadyProcessed(image->header)) return;
+    const cv::Mat* frame = convert(*image);
+    if (!frame) return;
+    const double stamp = trackingStamp(image->header);
     core::TrackState state;
-    {
-      std::lock_guard<std::mutex> lock(pipeline_mutex_);
-      if (frame->size() != prepared_size_ || frame->type() != prepared_type_) prepareFor(*frame);
-      const auto t0 = std::chrono::steady_clock::now();
-      obstacles_ = pipeline_->process(*frame, stamp);
-      processing = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      state = pipeline_->state();
-      collision_.setMaxBearingRate(pipeline_->params().collision_bearing_rate);
-    }
+    const double processing = track(*frame, stamp, &state);
     have_last_ = true;
     last_stamp_ = image->header.stamp;
     last_seq_ = image->header.seq;
-
-    boost::shared_ptr<ObstacleArray> out = boost::make_shared<ObstacleArray>();
-    out->header = image->header;
-    out->target_frame = target_frame_.empty() ? image->header.frame_id : target_frame_;
-    out->image_width = image->width;
-    out->image_height = image->height;
-    out->processing_time = static_cast<float>(processing);
-    out->obstacles.resize(obstacles_.size());
-    for (std::size_t i = 0; i < obstacles_.size(); ++i) bridge::toMessage(obstacles_[i], out->obstacles[i]);
-    if (info) fillGeometry(*image, *info, *out);
-    markCollisionCourse(stamp, *out);
-    // The frame is processed once its answer exists: a frame that arrives after the answer (the
-    // overlay and statistics below are still being done) is kept, not dropped (frame_slot.h).
-    slot_.done();
-    obstacles_pub_.publish(out);
-
-    if (debug_pub_.getNumSubscribers() > 0) {
-      char status[160];
-      std::snprintf(status, sizeof(status), "%s  obstacles: %zu  %.1f ms", core::toString(state),
-                    obstacles_.size(), processing * 1e3);
-      bridge::drawOverlay(*frame, obstacles_, status, overlay_);
-      debug_pub_.publish(cv_bridge::CvImage(image->header, "bgr8", overlay_).toImageMsg());
-    }
-
-    // In double: ros::Time subtraction throws when the stamp is decades away (a bad clock).
-    const double latency = image->header.stamp.isZero() ? 0.0 : ros::Time::now().toSec() - image->header.stamp.toSec();
-    std::lock_guard<std::mutex> lock(stats_mutex_);
-    for (Window* w : {&window_, &total_}) {
-      ++w->processed;
-      w->processing_sum += processing;
-      w->processing_max = std::max(w->processing_max, processing);
-      w->latency_sum += latency;
-      w->latency_max = std::max(w->latency_max, latency);
-    }
-    last_state_ = state;
-    last_obstacle_count_ = obstacles_.size();
+    publishObstacles(*image, info, stamp, processing);
+    publishOverlay(*image, *frame, state, processing);
+    countProcessed(image->header, processing, state);
     return;
   } catch (const cv::Exception& e) {
     NODELET_ERROR_THROTTLE(5.0, "OpenCV error on a '%s' frame (skipped, tracks reset): %s", encoding.c_str(), e.what());
@@ -361,73 +357,7 @@ void ObstacleTrackerNodelet::process(const sensor_msgs::ImageConstPtr& image,
     pipeline_->reset();
   } catch (...) {
   }
-  std::lock_guard<std::mutex> lock(stats_mutex_);
-  ++window_.rejected;
-  ++total_.rejected;
-  last_error_ = error;
-}
-
-void ObstacleTrackerNodelet::fillGeometry(const sensor_msgs::Image& image, const sensor_msgs::CameraInfo& info,
-                                          ObstacleArray& out) {
-  if (!have_info_ || !sameCalibration(info, last_info_)) {
-    std::string error;
-    if (!camera_.setCameraInfo(info, &error)) {
-      NODELET_WARN("camera_info unusable (%s): no bearings until it changes", error.c_str());
-    }
-    last_info_ = info;
-    have_info_ = true;
-  }
-  if (!camera_.valid()) return;
-  std::uint32_t width, height;
-  describedSize(info, &width, &height);
-  if (width != 0 && height != 0 && (width != image.width || height != image.height)) {
-    NODELET_WARN_THROTTLE(10.0, "camera_info describes %ux%u images but the image is %ux%u: no bearings",
-                          width, height, image.width, image.height);
-    return;
-  }
-  Eigen::Quaterniond rotation = Eigen::Quaterniond::Identity();
-  if (!target_frame_.empty() && target_frame_ != image.header.frame_id) {
-    try {
-      const geometry_msgs::TransformStamped tf = tf_buffer_->lookupTransform(
-          target_frame_, image.header.frame_id, image.header.stamp, ros::Duration(tf_timeout_));
-      const auto& q = tf.transform.rotation;
-      rotation = Eigen::Quaterniond(q.w, q.x, q.y, q.z).normalized();
-    } catch (const tf2::TransformException& e) {
-      NODELET_WARN_THROTTLE(5.0, "no transform from '%s' to ~target_frame '%s' at %.3f (%s): bearings left out",
-                            image.header.frame_id.c_str(), target_frame_.c_str(), image.header.stamp.toSec(), e.what());
-      return;
-    }
-  }
-  for (std::size_t i = 0; i < obstacles_.size() && i < out.obstacles.size(); ++i) {
-    const bridge::BoxGeometry g = camera_.box(obstacles_[i].box);
-    // A direction: only the rotation of the transform applies.
-    const Eigen::Vector3d b = rotation * Eigen::Vector3d(g.bearing[0], g.bearing[1], g.bearing[2]);
-    Obstacle& o = out.obstacles[i];
-    o.has_bearing = true;
-    o.bearing.x = b.x();
-    o.bearing.y = b.y();
-    o.bearing.z = b.z();
-    o.angular_width = static_cast<float>(g.angular_width);
-    o.angular_height = static_cast<float>(g.angular_height);
-  }
-}
-
-void ObstacleTrackerNodelet::markCollisionCourse(double stamp, ObstacleArray& out) {
-  course_.resize(out.obstacles.size());
-  for (std::size_t i = 0; i < out.obstacles.size(); ++i) {
-    const Obstacle& o = out.obstacles[i];
-    core::CollisionCourse::Track& t = course_[i];
-    t.id = static_cast<int>(o.id);
-    t.has_bearing = o.has_bearing;
-    t.bearing = cv::Vec3d(o.bearing.x, o.bearing.y, o.bearing.z);
-    t.expansion_rate = o.expansion_rate;
-    t.expansion_rate_sigma = o.expansion_rate_sigma;
-  }
-  collision_.update(stamp, course_);
-  for (std::size_t i = 0; i < out.obstacles.size(); ++i) {
-    out.obstacles[i].bearing_rate = static_cast<float>(course_[i].bearing_rate);
-    out.obstacles[i].collision_course = course_[i].collision_course;
-  }
+  countRefused(error);
 }
 
 void ObstacleTrackerNodelet::reconfigure(ObstacleTrackerConfig& config, std::uint32_t /*level*/) {
@@ -444,59 +374,6 @@ void ObstacleTrackerNodelet::reconfigure(ObstacleTrackerConfig& config, std::uin
   } catch (...) {
     NODELET_ERROR("dynamic_reconfigure change refused: unknown error");
   }
-}
-
-void ObstacleTrackerNodelet::diagnosticsTimer(const ros::WallTimerEvent&) {
-  try {
-    updater_->update();
-  } catch (const std::exception& e) {
-    NODELET_ERROR_THROTTLE(10.0, "diagnostics: %s", e.what());
-  } catch (...) {
-  }
-}
-
-void ObstacleTrackerNodelet::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {
-  core::Params params;
-  {
-    std::lock_guard<std::mutex> lock(pipeline_mutex_);
-    params = pipeline_->params();
-  }
-  std::lock_guard<std::mutex> lock(stats_mutex_);
-  const ros::WallTime now = ros::WallTime::now();
-  const double seconds = std::max(1e-6, (now - window_start_).toSec());
-  const Window& w = window_;
-  const double n = std::max<double>(1.0, static_cast<double>(w.processed));
-  status.add("input rate (Hz)", w.received / seconds);
-  status.add("processed rate (Hz)", w.processed / seconds);
-  status.add("processing time mean (ms)", 1e3 * w.processing_sum / n);
-  status.add("processing time max (ms)", 1e3 * w.processing_max);
-  status.add("latency from image stamp mean (ms)", 1e3 * w.latency_sum / n);
-  status.add("latency from image stamp max (ms)", 1e3 * w.latency_max);
-  status.add("dropped frames (this period)", w.dropped);
-  status.add("refused frames (this period)", w.rejected);
-  status.add("images received (total)", total_.received);
-  status.add("frames processed (total)", total_.processed);
-  status.add("dropped frames (total)", total_.dropped);
-  status.add("refused frames (total)", total_.rejected);
-  status.add("duplicate frames skipped (total)", duplicates_);
-  status.add("tracker state", core::toString(last_state_));
-  status.add("obstacles", last_obstacle_count_);
-  for (const core::ParamInfo& info : core::paramTable()) {
-    status.add(std::string("param ") + info.name, core::getParam(params, info.name));
-  }
-  if (w.received == 0) {
-    status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "no images received");
-  } else if (w.rejected > 0) {
-    status.summaryf(diagnostic_msgs::DiagnosticStatus::WARN, "%llu frames refused: %s",
-                    static_cast<unsigned long long>(w.rejected), last_error_.c_str());
-  } else if (use_camera_info_ && w.processed == 0) {
-    status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "images but no synchronised camera_info");
-  } else {
-    status.summaryf(diagnostic_msgs::DiagnosticStatus::OK, "%s, %zu obstacles, %.1f Hz",
-                    core::toString(last_state_), last_obstacle_count_, w.processed / seconds);
-  }
-  window_ = Window();
-  window_start_ = now;
 }
 
 }  // namespace obstacle_tracker

@@ -63,7 +63,19 @@ class ObstacleTrackerNodelet : public nodelet::Nodelet {
   void countInput(const sensor_msgs::ImageConstPtr& image);
   void processFrames();
   void prepareFor(const cv::Mat& frame);  // under pipeline_mutex_
+  // One frame: refused, or tracked, answered and counted (every exception caught here).
   void process(const sensor_msgs::ImageConstPtr& image, const sensor_msgs::CameraInfoConstPtr& info);
+  bool alreadyProcessed(const std_msgs::Header& header);  // counted and logged when it is
+  const cv::Mat* convert(const sensor_msgs::Image& image);  // null (counted, logged) if refused
+  double trackingStamp(const std_msgs::Header& header);    // the arrival time when unstamped
+  // Runs the pipeline on the frame; its processing time in seconds.
+  double track(const cv::Mat& frame, double stamp, core::TrackState* state);
+  void publishObstacles(const sensor_msgs::Image& image, const sensor_msgs::CameraInfoConstPtr& info,
+                        double stamp, double processing);
+  void publishOverlay(const sensor_msgs::Image& image, const cv::Mat& frame, core::TrackState state,
+                      double processing);  // only when ~debug_image has subscribers
+  void countProcessed(const std_msgs::Header& header, double processing, core::TrackState state);
+  void countRefused(const std::string& error);
   void fillGeometry(const sensor_msgs::Image& image, const sensor_msgs::CameraInfo& info, ObstacleArray& out);
   // bearing_rate and collision_course of out's obstacles (core/collision_course.h).
   void markCollisionCourse(double stamp, ObstacleArray& out);
