@@ -55,7 +55,7 @@ status=0
 for scene in "crossing+jerk 480x360" "bird 480x360" "approach 640x480"; do
   set -- $scene
   for init in gt auto; do
-    # Rendered once, here: the renderer's own OpenCV calls round differently on arm64 too.
+    # Rendered once, here: both sides then track the very same bytes (docs/scenes.md).
     "$NATIVE" --scenario "$1" --seed 3 --frames 150 --size "$2" --init "$init" --save "$TMP/clip.bin" > "$TMP/native.txt"
     qemu-aarch64 "$ARM/scene_boxes" --load "$TMP/clip.bin" --init "$init" > "$TMP/arm64.txt"
     same=$(paste "$TMP/native.txt" "$TMP/arm64.txt" | awk -F'\t' '$1 == $2' | wc -l)

@@ -7,9 +7,10 @@
 // main obstacle's box and confidence with every float digit, then the OTB scores against the
 // scene's ground truth. Two machines that print the same lines track identically; the last line
 // (`# scores ...`) is what the cross-machine check compares within its tolerance.
-// The renderer's own OpenCV calls (blur, warps) round differently on another CPU, so to compare
-// trackers the frames are rendered once: --save writes them and their ground truth to FILE (raw
-// bytes, this tool's own format), --load tracks the frames of such a file instead of rendering.
+// The renderer is portable arithmetic (docs/scenes.md; SceneGenerator.KnownFrameHashes checks it
+// on every build), yet the cross-machine check renders once and compares trackers on the very
+// same bytes, so that a difference can only come from the tracker: --save writes the frames and
+// their ground truth to FILE (raw bytes, this tool's own format), --load tracks them.
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
