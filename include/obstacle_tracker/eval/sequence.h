@@ -64,6 +64,16 @@ class FrameConverter {
   double lastHigh() const { return high_; }
 
  private:
+  // [lo, hi] of a 16-bit frame (1 or 3 channels) from a histogram of all its values.
+  void histogramRange16(const cv::Mat& src, double* lo, double* hi);
+  // `src` (1 or 3 channels, any depth but 8U and 16U; `in` is the caller's frame it came from) as
+  // 32-bit float with NaN set to the low end, in float_; [lo, hi] from a strided sample of its
+  // finite values (left alone when there is none).
+  const cv::Mat& floatWithSampledRange(const cv::Mat& in, const cv::Mat& src, double* lo,
+                                       double* hi);
+  // Smooths [lo, hi] into the running range and stretches `src` by it into out_ (CV_8U).
+  void stretchToOutput(const cv::Mat& src, double lo, double hi);
+
   double low_percent_, high_percent_, smoothing_;
   bool have_range_ = false;
   double low_ = 0.0, high_ = 255.0;
