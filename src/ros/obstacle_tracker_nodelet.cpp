@@ -13,6 +13,7 @@
 #include <pluginlib/class_list_macros.hpp>
 
 #include "obstacle_tracker/ros/conversions.h"
+#include "obstacle_tracker/ros/markers.h"
 #include "obstacle_tracker/ros/overlay.h"
 
 namespace obstacle_tracker {
@@ -94,6 +95,7 @@ void ObstacleTrackerNodelet::onInit() {
   obstacles_pub_ = pnh.advertise<ObstacleArray>("obstacles", 200);
   image_transport::ImageTransport private_it(pnh);
   debug_pub_ = private_it.advertise("debug_image", 1);
+  markers_pub_ = pnh.advertise<visualization_msgs::MarkerArray>("markers", 1);
 
   // dynamic_reconfigure: start from the parameters just read (file + ROS), not from the .cfg
   // defaults, then apply every later change through the callback.
@@ -295,6 +297,11 @@ void ObstacleTrackerNodelet::publishObstacles(const sensor_msgs::Image& image,
   // overlay and statistics below are still being done) is kept, not dropped (frame_slot.h).
   slot_.done();
   obstacles_pub_.publish(out);
+  if (markers_pub_.getNumSubscribers() > 0) {
+    // Arrows outlive a frame a little, so that they vanish when the frames stop, not between.
+    bridge::bearingMarkers(*out, kMarkerLifetime, markers_);
+    markers_pub_.publish(markers_);
+  }
 }
 
 void ObstacleTrackerNodelet::publishOverlay(const sensor_msgs::Image& image, const cv::Mat& frame,

@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # rviz overlay test: starts rviz under Xvfb with config/obstacle_tracker.rviz (through
 # launch/tracker.launch rviz:=true) while synthetic frames are published, takes screenshots with
-# ImageMagick's import and passes when the overlay's box colour (pure green, tracking) is visible.
+# ImageMagick's import and passes when the overlay's box colour (pure green, tracking) is visible
+# and, in the 3D view, the ~markers bearing arrow of an obstacle that is not closing (cyan, a
+# confirmed track with confidence >= 0.5; ros/markers.h).
 # Skipped, with exit 0 and a SKIPPED message, where rviz, Xvfb or ImageMagick is not installed.
 #   usage: rviz_screenshot.sh DEVEL_DIR OUT_DIR
 set -u
@@ -53,6 +55,7 @@ launch
 restarts=0
 status=1
 green=0
+cyan=0
 for attempt in $(seq 1 40); do
   sleep 3
   if ! kill -0 "$LAUNCH" 2>/dev/null; then
@@ -70,16 +73,18 @@ for attempt in $(seq 1 40); do
   fi
   /usr/bin/import -window root "$SHOT" 2>/dev/null || continue
   green=$("$DEVEL/lib/obstacle_tracker/tool_count_colour" "$SHOT" 0 255 0 60 || echo 0)
-  echo "screenshot $attempt: $green overlay-green pixels"
-  # The drawn box: at least a few dozen pixels of its outline after rviz scales the image.
-  if [ "$green" -ge 40 ]; then status=0; break; fi
+  cyan=$("$DEVEL/lib/obstacle_tracker/tool_count_colour" "$SHOT" 255 255 0 60 || echo 0)
+  echo "screenshot $attempt: $green overlay-green pixels, $cyan bearing-arrow cyan pixels"
+  # The drawn box: at least a few dozen pixels of its outline after rviz scales the image; the
+  # arrow (5 m long, 5 cm thick, seen from 10 m): at least a hundred.
+  if [ "$green" -ge 40 ] && [ "$cyan" -ge 100 ]; then status=0; break; fi
 done
 stop
 
 if [ $status -eq 0 ]; then
-  echo "PASSED: rviz shows the overlay box ($green green pixels), screenshot $SHOT"
+  echo "PASSED: rviz shows the overlay box ($green green pixels) and the bearing arrow ($cyan cyan pixels), screenshot $SHOT"
 else
-  echo "FAILED: no overlay box in rviz's window after 120 s (last screenshot $SHOT, log $LOG)"
+  echo "FAILED: no overlay box ($green green pixels) or no bearing arrow ($cyan cyan pixels) in rviz's window after 120 s (last screenshot $SHOT, log $LOG)"
   tail -20 "$LOG"
 fi
 exit $status

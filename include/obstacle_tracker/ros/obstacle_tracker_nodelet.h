@@ -8,6 +8,7 @@
 //               is being processed.
 //   publishes   ~obstacles (ObstacleArray, header = the input image's header, one per processed
 //               frame, empty when nothing is there), ~debug_image (overlay, only when subscribed),
+//               ~markers (bearing arrows in target_frame, markers.h; only when subscribed),
 //               /diagnostics
 //   parameters  every core parameter under its params.h name in the private namespace,
 //               ~params_file (YAML, read first), dynamic_reconfigure (ObstacleTracker.cfg),
@@ -37,6 +38,7 @@
 #include <sensor_msgs/Image.h>
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_listener.h>
+#include <visualization_msgs/MarkerArray.h>
 
 #include "obstacle_tracker/ObstacleArray.h"
 #include "obstacle_tracker/ObstacleTrackerConfig.h"
@@ -111,6 +113,7 @@ class ObstacleTrackerNodelet : public nodelet::Nodelet {
   std::unique_ptr<message_filters::Synchronizer<SyncPolicy>> sync_;
   ros::Publisher obstacles_pub_;
   image_transport::Publisher debug_pub_;
+  ros::Publisher markers_pub_;
   boost::recursive_mutex reconfigure_mutex_;
   std::unique_ptr<dynamic_reconfigure::Server<ObstacleTrackerConfig>> reconfigure_server_;
   std::unique_ptr<tf2_ros::Buffer> tf_buffer_;
@@ -128,6 +131,8 @@ class ObstacleTrackerNodelet : public nodelet::Nodelet {
   sensor_msgs::CameraInfo last_info_;
   bool have_info_ = false;
   cv::Mat overlay_;
+  visualization_msgs::MarkerArray markers_;  // reused buffer
+  static constexpr double kMarkerLifetime = 1.0;  // s
   bool have_last_ = false;
   ros::Time last_stamp_;
   std::uint32_t last_seq_ = 0;
