@@ -32,8 +32,6 @@ void ObstacleTrackerNodelet::diagnose(diagnostic_updater::DiagnosticStatusWrappe
   status.add("processed rate (Hz)", w.processed / seconds);
   status.add("processing time mean (ms)", 1e3 * w.processing_sum / n);
   status.add("processing time max (ms)", 1e3 * w.processing_max);
-  status.add("latency from image stamp mean (ms)", 1e3 * w.latency_sum / n);
-  status.add("latency from image stamp max (ms)", 1e3 * w.latency_max);
   status.add("dropped frames (this period)", w.dropped);
   status.add("refused frames (this period)", w.rejected);
   status.add("images received (total)", total_.received);

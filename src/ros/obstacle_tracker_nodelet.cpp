@@ -111,6 +111,10 @@ void ObstacleTrackerNodelet::onInit() {
   updater_.reset(new diagnostic_updater::Updater(nh, pnh, getName()));
   updater_->setHardwareID("none");
   updater_->add("obstacle tracker", this, &ObstacleTrackerNodelet::diagnose);
+  obstacles_diagnostic_.reset(new diagnostic_updater::TopicDiagnostic(
+      "obstacle tracker ~obstacles", *updater_,
+      diagnostic_updater::FrequencyStatusParam(&min_obstacles_rate_, &max_obstacles_rate_, 0.0, 10),
+      diagnostic_updater::TimeStampStatusParam(0.0, kMaxStampDelay)));
   window_start_ = ros::WallTime::now();
   diagnostics_timer_ = pnh.createWallTimer(ros::WallDuration(0.25), &ObstacleTrackerNodelet::diagnosticsTimer, this);
 
@@ -297,6 +301,7 @@ void ObstacleTrackerNodelet::publishObstacles(const sensor_msgs::Image& image,
   // overlay and statistics below are still being done) is kept, not dropped (frame_slot.h).
   slot_.done();
   obstacles_pub_.publish(out);
+  obstacles_diagnostic_->tick(image.header.stamp);
   if (markers_pub_.getNumSubscribers() > 0) {
     // Arrows outlive a frame a little, so that they vanish when the frames stop, not between.
     bridge::bearingMarkers(*out, kMarkerLifetime, markers_);
@@ -314,17 +319,12 @@ void ObstacleTrackerNodelet::publishOverlay(const sensor_msgs::Image& image, con
   debug_pub_.publish(cv_bridge::CvImage(image.header, "bgr8", overlay_).toImageMsg());
 }
 
-void ObstacleTrackerNodelet::countProcessed(const std_msgs::Header& header, double processing,
-                                            core::TrackState state) {
-  // In double: ros::Time subtraction throws when the stamp is decades away (a bad clock).
-  const double latency = header.stamp.isZero() ? 0.0 : ros::Time::now().toSec() - header.stamp.toSec();
+void ObstacleTrackerNodelet::countProcessed(double processing, core::TrackState state) {
   std::lock_guard<std::mutex> lock(stats_mutex_);
   for (Window* w : {&window_, &total_}) {
     ++w->processed;
     w->processing_sum += processing;
     w->processing_max = std::max(w->processing_max, processing);
-    w->latency_sum += latency;
-    w->latency_max = std::max(w->latency_max, latency);
   }
   last_state_ = state;
   last_obstacle_count_ = obstacles_.size();
@@ -346,7 +346,7 @@ void ObstacleTrackerNodelet::process(const sensor_msgs::ImageConstPtr& image,
     last_seq_ = image->header.seq;
     publishObstacles(*image, info, stamp, processing);
     publishOverlay(*image, *frame, state, processing);
-    countProcessed(image->header, processing, state);
+    countProcessed(processing, state);
     return;
   } catch (const cv::Exception& e) {
     NODELET_ERROR_THROTTLE(5.0, "OpenCV error on a '%s' frame (skipped, tracks reset): %s", encoding.c_str(), e.what());

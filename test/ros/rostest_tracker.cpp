@@ -122,6 +122,7 @@ class Harness {
   std::vector<ot::ObstacleArray> outputs_;
   std::vector<rosgraph_msgs::Log> logs_;
   diagnostic_msgs::DiagnosticStatus last_diagnostics_;
+  diagnostic_msgs::DiagnosticStatus last_topic_diagnostics_;
   double base_stamp_ = ros::Time::now().toSec();
   std::uint32_t published_ = 0;
 
@@ -144,7 +145,15 @@ class Harness {
   void onDiagnostics(const diagnostic_msgs::DiagnosticArrayConstPtr& m) {
     std::lock_guard<std::mutex> lock(mutex_);
     for (const auto& s : m->status) {
-      if (s.name.find("obstacle tracker") != std::string::npos) last_diagnostics_ = s;
+      // "NODE: obstacle tracker" (the tracker's own status) and "NODE: obstacle tracker
+      // ~obstacles" (diagnostic_updater's topic diagnostic of the output).
+      const std::string suffix = ": obstacle tracker";
+      if (s.name.size() >= suffix.size() &&
+          s.name.compare(s.name.size() - suffix.size(), suffix.size(), suffix) == 0) {
+        last_diagnostics_ = s;
+      } else if (s.name.find("obstacle tracker ~obstacles") != std::string::npos) {
+        last_topic_diagnostics_ = s;
+      }
     }
     cv_.notify_all();
   }
@@ -192,6 +201,15 @@ TEST(Tracker, OneArrayPerImageWithItsHeader) {
     ros::WallDuration(0.05).sleep();
   }
   ros::WallDuration(1.5).sleep();  // anything extra would arrive now
+  // ~obstacles has its topic diagnostic (rate and stamp delay) once the diagnostics ran with
+  // outputs in their window.
+  const bool topic_diagnosed = h.waitFor([&] {
+    for (const auto& kv : h.last_topic_diagnostics_.values) {
+      if (kv.key == "Events since startup" && std::stod(kv.value) > 0) return true;
+    }
+    return false;
+  }, 10.0);
+  EXPECT_TRUE(topic_diagnosed) << "no 'obstacle tracker ~obstacles' status counting outputs";
   std::lock_guard<std::mutex> lock(h.mutex_);
   ASSERT_EQ(h.outputs_.size(), sent.size()) << "exactly one ObstacleArray per image";
   ASSERT_EQ(h.echoed_.size(), sent.size());

@@ -19,6 +19,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -26,6 +27,7 @@
 #include <vector>
 
 #include <diagnostic_updater/diagnostic_updater.h>
+#include <diagnostic_updater/publisher.h>
 #include <dynamic_reconfigure/server.h>
 #include <image_transport/image_transport.h>
 #include <image_transport/subscriber_filter.h>
@@ -76,7 +78,7 @@ class ObstacleTrackerNodelet : public nodelet::Nodelet {
                         double stamp, double processing);
   void publishOverlay(const sensor_msgs::Image& image, const cv::Mat& frame, core::TrackState state,
                       double processing);  // only when ~debug_image has subscribers
-  void countProcessed(const std_msgs::Header& header, double processing, core::TrackState state);
+  void countProcessed(double processing, core::TrackState state);
   void countRefused(const std::string& error);
   void fillGeometry(const sensor_msgs::Image& image, const sensor_msgs::CameraInfo& info, ObstacleArray& out);
   // bearing_rate and collision_course of out's obstacles (core/collision_course.h).
@@ -119,6 +121,13 @@ class ObstacleTrackerNodelet : public nodelet::Nodelet {
   std::unique_ptr<tf2_ros::Buffer> tf_buffer_;
   std::unique_ptr<tf2_ros::TransformListener> tf_listener_;
   std::unique_ptr<diagnostic_updater::Updater> updater_;
+  // ~obstacles' rate and the delay of its stamps (the input images') behind the clock: any
+  // rate from kMinObstaclesRate up, a delay within [0, kMaxStampDelay] s.
+  static constexpr double kMinObstaclesRate = 1.0;   // Hz
+  static constexpr double kMaxStampDelay = 0.5;      // s
+  double min_obstacles_rate_ = kMinObstaclesRate;
+  double max_obstacles_rate_ = std::numeric_limits<double>::infinity();
+  std::unique_ptr<diagnostic_updater::TopicDiagnostic> obstacles_diagnostic_;
   ros::WallTimer diagnostics_timer_;
 
   // Per-frame helpers, used on worker_ only.
@@ -144,7 +153,6 @@ class ObstacleTrackerNodelet : public nodelet::Nodelet {
     std::uint64_t dropped = 0;
     std::uint64_t rejected = 0;
     double processing_sum = 0.0, processing_max = 0.0;
-    double latency_sum = 0.0, latency_max = 0.0;
   };
   std::mutex stats_mutex_;
   Window window_;
