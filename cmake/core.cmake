@@ -48,7 +48,10 @@ list(APPEND OT_LIBS obstacle_tracker_core)
 # Command-line tools: each src/tools/NAME.cpp is the main of the executable NAME, linked with
 # every library above; a tool too large for one file keeps its other parts in src/tools/NAME/
 # (included as "NAME/part.h"). Under catkin they land in devel/lib/obstacle_tracker (rosrun
-# finds them).
+# finds them). They read their command line with CLI11 (header-only, so found by hand like
+# yaml-cpp: the host's headers serve a cross-build too); src/tools/command_line.h holds the
+# conventions they share (help, usage errors, exit codes).
+find_path(OT_CLI11_INCLUDE_DIR CLI/CLI.hpp REQUIRED)
 file(GLOB OT_TOOL_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/tools/*.cpp)
 if(NOT OT_WITH_IMAGE_IO)  # the tools that read no image file
   list(FILTER OT_TOOL_SOURCES INCLUDE REGEX "/(print_params|scene_boxes)\\.cpp$")
@@ -58,6 +61,7 @@ foreach(src ${OT_TOOL_SOURCES})
   file(GLOB parts CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/tools/${name}/*.cpp)
   add_executable(${name} ${src} ${parts})
   target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/src/tools)
+  target_include_directories(${name} SYSTEM PRIVATE ${OT_CLI11_INCLUDE_DIR})
   target_link_libraries(${name} ${OT_LIBS})
   if(OT_TOOL_OUTPUT_DIR)
     set_target_properties(${name} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${OT_TOOL_OUTPUT_DIR})

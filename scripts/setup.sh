@@ -19,7 +19,7 @@ SUDO=""
 if [ "$(id -u)" -ne 0 ]; then SUDO=sudo; fi
 
 PACKAGES=(
-  cmake g++ make pkg-config libgtest-dev libbenchmark-dev libeigen3-dev libyaml-cpp-dev
+  cmake g++ make pkg-config libgtest-dev libbenchmark-dev libeigen3-dev libyaml-cpp-dev libcli11-dev
   catkin ros-message-generation ros-std-msgs ros-geometry-msgs ros-sensor-msgs python3-geometry-msgs python3-std-msgs
   libroscpp-dev libstd-msgs-dev libsensor-msgs-dev libgeometry-msgs-dev
   libnodeletlib-dev libnodeletlib-tools
