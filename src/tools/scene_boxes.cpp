@@ -15,12 +15,14 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include <opencv2/imgproc.hpp>
 
+#include "command_line.h"
 #include "obstacle_tracker/core/pipeline.h"
 #include "obstacle_tracker/eval/metrics.h"
 #include "obstacle_tracker/scene/scene_generator.h"
@@ -30,11 +32,6 @@ namespace os = obstacle_tracker::scene;
 namespace ev = obstacle_tracker::eval;
 
 namespace {
-
-void usage(std::ostream& o) {
-  o << "usage: scene_boxes --scenario NAME[+MODIFIER...] --seed N [--frames N] [--size WxH] [--grey]\n"
-       "                   [--init gt|auto] [--save FILE | --load FILE]\n";
-}
 
 struct Options {
   std::string scenario = "crossing";
@@ -120,52 +117,55 @@ Clip loadClip(const std::string& path) {
   return c;
 }
 
-Options parse(int argc, char** argv) {
-  Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw std::invalid_argument("missing value after " + a);
-      return argv[++i];
-    };
-    if (a == "--scenario") {
-      o.scenario = value();
-    } else if (a == "--seed") {
-      o.seed = std::stoull(value());
-    } else if (a == "--frames") {
-      o.frames = std::stoi(value());
-    } else if (a == "--size") {
-      const std::string v = value();
-      const std::size_t x = v.find('x');
-      if (x == std::string::npos) throw std::invalid_argument("--size wants WxH, got " + v);
-      o.size = cv::Size(std::stoi(v.substr(0, x)), std::stoi(v.substr(x + 1)));
-    } else if (a == "--save") {
-      o.save = value();
-    } else if (a == "--load") {
-      o.load = value();
-    } else if (a == "--grey") {
-      o.grey = true;
-    } else if (a == "--init") {
-      const std::string v = value();
-      if (v != "gt" && v != "auto") throw std::invalid_argument("--init wants gt or auto, got " + v);
-      o.from_box = v == "gt";
-    } else if (a == "-h" || a == "--help") {
-      usage(std::cout);
-      std::exit(0);
-    } else {
-      throw std::invalid_argument("unknown argument " + a);
-    }
+// Reads the command line into *o. Returns nothing when the tool is to run, otherwise the code to
+// exit with (0 after --help, 2 after a usage error; both already printed).
+std::optional<int> parse(int argc, char** argv, Options* o) {
+  CLI::App app{
+      "Tracks a generated flight scene rendered in memory and prints, per frame, the main obstacle's box "
+      "and confidence, then the OTB scores against the scene's ground truth.",
+      "scene_boxes"};
+  obstacle_tracker::tools::setToolDefaults(app);
+  std::string size, init = "auto";
+  app.add_option("--scenario", o->scenario, "scenario, NAME[+MODIFIER...] (see generate_scene --list)")
+      ->type_name("NAME")
+      ->capture_default_str();
+  app.add_option("--seed", o->seed, "scene seed")
+      ->type_name("N")
+      ->capture_default_str()
+      ->check(obstacle_tracker::tools::decimalUnsigned64());
+  app.add_option("--frames", o->frames, "frames rendered (at least 1)")->type_name("N")->capture_default_str();
+  app.add_option("--size", size, "frame size (default 480x360)")->type_name("WxH");
+  app.add_flag("--grey", o->grey, "track grey frames (converted from the rendered colour)");
+  app.add_option("--init", init, "gt: start from the first ground-truth box; auto: the pipeline finds the obstacle")
+      ->type_name("gt|auto")
+      ->capture_default_str();
+  app.add_option("--save", o->save, "write the frames and their ground truth to FILE (this tool's raw format)")
+      ->type_name("FILE");
+  app.add_option("--load", o->load, "track the frames of a --save FILE instead of rendering")->type_name("FILE");
+  app.footer(
+      "Output: one line per frame, `index x y w h confidence` with every float digit, then\n"
+      "`# scores precision20 P auc A`.");
+  if (const auto code = obstacle_tracker::tools::parseCommandLine(app, argc, argv)) return code;
+  if (!size.empty() && !obstacle_tracker::tools::parseSize(size, "x", &o->size)) {
+    return obstacle_tracker::tools::usageError(app, "--size wants WxH, got " + size);
   }
-  if (o.frames < 1) throw std::invalid_argument("--frames must be at least 1");
-  if (!o.save.empty() && !o.load.empty()) throw std::invalid_argument("--save and --load exclude each other");
-  return o;
+  if (init != "gt" && init != "auto") {
+    return obstacle_tracker::tools::usageError(app, "--init wants gt or auto, got " + init);
+  }
+  o->from_box = init == "gt";
+  if (o->frames < 1) return obstacle_tracker::tools::usageError(app, "--frames must be at least 1");
+  if (!o->save.empty() && !o->load.empty()) {
+    return obstacle_tracker::tools::usageError(app, "--save and --load exclude each other");
+  }
+  return std::nullopt;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
+  Options o;
+  if (const auto code = parse(argc, argv, &o)) return *code;
   try {
-    const Options o = parse(argc, argv);
     const Clip clip = o.load.empty() ? render(o) : loadClip(o.load);
     if (!o.save.empty()) saveClip(clip, o.save);
     oc::Pipeline pipeline;
@@ -195,7 +195,6 @@ int main(int argc, char** argv) {
     return 0;
   } catch (const std::exception& e) {
     std::cerr << "scene_boxes: " << e.what() << "\n";
-    usage(std::cerr);
     return 2;
   }
 }
