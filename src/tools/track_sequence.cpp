@@ -18,6 +18,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -26,6 +27,7 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 
+#include "command_line.h"
 #include "obstacle_tracker/core/params.h"
 #include "obstacle_tracker/core/pipeline.h"
 #include "obstacle_tracker/eval/sequence.h"
@@ -35,20 +37,6 @@ namespace core = obstacle_tracker::core;
 namespace eval = obstacle_tracker::eval;
 
 namespace {
-
-const char* kUsage =
-    "usage: track_sequence INPUT [--output FILE] [--init auto|gt|x,y,w,h] [--params FILE]\n"
-    "                      [--gt FILE] [--overlay OUT] [--quiet]\n"
-    "  INPUT           an OTB folder (img/ + groundtruth_rect.txt), a folder of images, or a video\n"
-    "  --output FILE   where the per-frame lines go (default: standard output)\n"
-    "  --init MODE     auto (default): the pipeline finds the obstacle itself;\n"
-    "                  gt: start from the first ground-truth box; x,y,w,h: start from this box\n"
-    "  --params FILE   YAML parameters on top of the defaults (see print_params --yaml)\n"
-    "  --gt FILE       ground-truth file (overrides the one found next to INPUT)\n"
-    "  --overlay OUT   draw boxes, ids, confidence and state: a video (.mp4, .avi, .mkv) or a folder\n"
-    "  --quiet         no progress bar and no summary on standard error\n"
-    "Output: one line per frame, x,y,w,h,confidence,time_to_contact of the main obstacle\n"
-    "        (time to contact in s, inf when not closing; 0,0,0,0,0,inf when none).\n";
 
 struct UsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
@@ -61,47 +49,42 @@ struct Options {
   cv::Rect2f box;
 };
 
-Options parseArgs(int argc, char** argv) {
-  Options o;
-  auto value = [&](int& i, const std::string& flag) -> std::string {
-    if (i + 1 >= argc) throw UsageError(flag + " needs a value");
-    return argv[++i];
-  };
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "-h" || a == "--help") {
-      std::cout << kUsage;
-      std::exit(0);
-    } else if (a == "--output" || a == "-o") {
-      o.output = value(i, a);
-    } else if (a == "--init") {
-      o.init = value(i, a);
-    } else if (a == "--params") {
-      o.params_file = value(i, a);
-    } else if (a == "--gt") {
-      o.gt_file = value(i, a);
-    } else if (a == "--overlay") {
-      o.overlay = value(i, a);
-    } else if (a == "--quiet" || a == "-q") {
-      o.quiet = true;
-    } else if (!a.empty() && a[0] == '-') {
-      throw UsageError("unknown option " + a);
-    } else if (o.input.empty()) {
-      o.input = a;
-    } else {
-      throw UsageError("more than one INPUT (" + o.input + ", " + a + ")");
-    }
-  }
-  if (o.input.empty()) throw UsageError("INPUT is missing");
-  if (o.init != "auto" && o.init != "gt") {
+// Reads the command line into *o. Returns nothing when the tool is to run, otherwise the code to
+// exit with (0 after --help, 2 after a usage error; both already printed).
+std::optional<int> parseArgs(int argc, char** argv, Options* o) {
+  CLI::App app{"Runs the obstacle tracker's pipeline over an OTB folder, a folder of images or a video.",
+               "track_sequence"};
+  obstacle_tracker::tools::setToolDefaults(app);
+  app.add_option("INPUT", o->input, "an OTB folder (img/ + groundtruth_rect.txt), a folder of images, or a video")
+      ->required();
+  app.add_option("-o,--output", o->output, "where the per-frame lines go (default: standard output)")
+      ->type_name("FILE");
+  app.add_option("--init", o->init,
+                 "auto (default): the pipeline finds the obstacle itself;\n"
+                 "gt: start from the first ground-truth box; x,y,w,h: start from this box")
+      ->type_name("MODE");
+  app.add_option("--params", o->params_file, "YAML parameters on top of the defaults (see print_params --yaml)")
+      ->type_name("FILE");
+  app.add_option("--gt", o->gt_file, "ground-truth file (overrides the one found next to INPUT)")->type_name("FILE");
+  app.add_option("--overlay", o->overlay,
+                 "draw boxes, ids, confidence and state: a video (.mp4, .avi, .mkv) or a folder")
+      ->type_name("OUT");
+  app.add_flag("-q,--quiet", o->quiet, "no progress bar and no summary on standard error");
+  app.footer(
+      "Output: one line per frame, x,y,w,h,confidence,time_to_contact of the main obstacle\n"
+      "        (time to contact in s, inf when not closing; 0,0,0,0,0,inf when none).\n"
+      "Exit codes: 0 success, 1 input/output error, 2 usage error.");
+  if (const auto code = obstacle_tracker::tools::parseCommandLine(app, argc, argv)) return code;
+  if (o->init != "auto" && o->init != "gt") {
     cv::Rect2f b;
-    if (!eval::parseGroundTruthLine(o.init, &b) || !eval::isPresent(b)) {
-      throw UsageError("--init must be auto, gt or x,y,w,h with w,h > 0 (got '" + o.init + "')");
+    if (!eval::parseGroundTruthLine(o->init, &b) || !eval::isPresent(b)) {
+      return obstacle_tracker::tools::usageError(
+          app, "--init must be auto, gt or x,y,w,h with w,h > 0 (got '" + o->init + "')");
     }
-    o.have_box = true;
-    o.box = b;
+    o->have_box = true;
+    o->box = b;
   }
-  return o;
+  return std::nullopt;
 }
 
 bool isVideoPath(const std::string& p) {
@@ -302,12 +285,7 @@ int run(const Options& opt) {
 
 int main(int argc, char** argv) {
   Options opt;
-  try {
-    opt = parseArgs(argc, argv);
-  } catch (const UsageError& e) {
-    std::cerr << "track_sequence: " << e.what() << "\n" << kUsage;
-    return 2;
-  }
+  if (const auto code = parseArgs(argc, argv, &opt)) return *code;
   try {
     return run(opt);
   } catch (const UsageError& e) {
