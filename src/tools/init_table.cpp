@@ -26,6 +26,7 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/saliency.hpp>
 
+#include "command_line.h"
 #include "obstacle_tracker/core/saliency.h"
 #include "obstacle_tracker/core/segmentation.h"
 #include "obstacle_tracker/eval/metrics.h"
@@ -148,20 +149,19 @@ int main(int argc, char** argv) {
   std::string data;
   int max_frames = 30;
   double fps = 25.0;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--data" && i + 1 < argc) data = argv[++i];
-    else if (a == "--frames" && i + 1 < argc) max_frames = std::atoi(argv[++i]);
-    else if (a == "--fps" && i + 1 < argc) fps = std::atof(argv[++i]);
-    else {
-      std::fprintf(stderr, "usage: init_table --data DIR [--frames N] [--fps F]\n");
-      return 2;
-    }
-  }
-  if (data.empty()) {
-    std::fprintf(stderr, "usage: init_table --data DIR [--frames N] [--fps F]\n");
-    return 2;
-  }
+  CLI::App app{"Auto-initialisation on real sequences (OTB layout: DIR/NAME/img/0001.jpg..., "
+               "groundtruth_rect.txt): prints Markdown tables of the first-frame detectors, the "
+               "AutoInitializer over the first N frames and a cue ablation.",
+               "init_table"};
+  obstacle_tracker::tools::setToolDefaults(app);
+  app.add_option("--data", data, "folder of OTB-layout sequences")->type_name("DIR")->required();
+  app.add_option("--frames", max_frames, "frames given to the AutoInitializer (at least 1)")->type_name("N")->capture_default_str();
+  app.add_option("--fps", fps, "frame rate of the sequences (\"within the first second\")")
+      ->type_name("F")
+      ->capture_default_str();
+  if (const auto code = obstacle_tracker::tools::parseCommandLine(app, argc, argv)) return *code;
+  if (data.empty()) return obstacle_tracker::tools::usageError(app, "--data must not be empty");
+  if (max_frames < 1) return obstacle_tracker::tools::usageError(app, "--frames must be at least 1");
   const std::vector<Sequence> seqs = listSequences(data);
   if (seqs.empty()) {
     std::fprintf(stderr, "no OTB-layout sequences under %s\n", data.c_str());
