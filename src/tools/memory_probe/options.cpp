@@ -2,102 +2,55 @@
 #include "memory_probe/options.h"
 
 #include <cstdint>
-#include <exception>
-#include <iostream>
-#include <stdexcept>
 #include <string>
+
+#include "command_line.h"
 
 namespace obstacle_tracker {
 namespace memory_probe_tool {
-namespace {
-
-const char* kUsage =
-    "usage: memory_probe [--frames N] [--size WxH] [--scenario NAME] [--seed N] [--warmup N]\n"
-    "                    [--start K] [--budget-mib M]\n"
-    "  --frames N      frames processed (default 300; frame 0 starts the tracks)\n"
-    "  --size WxH      frame size (default 1280x720)\n"
-    "  --scenario S    generated scene with three obstacles (default multi; see generate_scene --list)\n"
-    "  --seed N        scene seed (default 1)\n"
-    "  --warmup N      frames after the start before allocations are counted (default 30)\n"
-    "  --start K       start K of the three tracks from the ground truth (default 3; fewer leaves the\n"
-    "                  others to auto-initialisation, which then searches every frame)\n"
-    "  --budget-mib M  core heap budget in MiB (default 30)\n";
-
-struct UsageError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
-int toInt(const std::string& what, const std::string& v) {
-  std::size_t used = 0;
-  int x = 0;
-  try {
-    x = std::stoi(v, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != v.size()) throw UsageError(what + " wants an integer, got '" + v + "'");
-  return x;
-}
-
-// Reads the options in order; true when --help came (the arguments after it are not read).
-// Throws UsageError.
-bool readArguments(int argc, const char* const* argv, ProbeOptions* options) {
-  scene::ScenarioConfig& cfg = options->scene;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw UsageError("missing value after " + a);
-      return argv[++i];
-    };
-    if (a == "--frames") {
-      cfg.frames = toInt(a, value());
-    } else if (a == "--size") {
-      const std::string v = value();
-      const auto x = v.find_first_of("xX");
-      if (x == std::string::npos) throw UsageError("--size wants WxH, got " + v);
-      cfg.size = cv::Size(toInt(a, v.substr(0, x)), toInt(a, v.substr(x + 1)));
-    } else if (a == "--scenario") {
-      cfg.name = value();
-    } else if (a == "--seed") {
-      cfg.seed = static_cast<std::uint64_t>(toInt(a, value()));
-    } else if (a == "--warmup") {
-      options->warmup = toInt(a, value());
-    } else if (a == "--start") {
-      options->start_count = toInt(a, value());
-      if (options->start_count < 1 || options->start_count > 3) throw UsageError("--start must be 1, 2 or 3");
-    } else if (a == "--budget-mib") {
-      options->budget_mib = std::stod(value());
-    } else if (a == "--help" || a == "-h") {
-      return true;
-    } else {
-      throw UsageError("unknown argument " + a);
-    }
-  }
-  return false;
-}
-
-}  // namespace
 
 ParsedCommandLine parseProbeOptions(int argc, const char* const* argv) {
   ParsedCommandLine parsed;
   ProbeOptions& options = parsed.options;
-  options.scene.name = "multi";
-  options.scene.seed = 1;
-  options.scene.frames = 300;
-  options.scene.size = cv::Size(1280, 720);
-  try {
-    if (readArguments(argc, argv, &options)) {
-      std::cout << kUsage;
-      parsed.exit_code = 0;
-      return parsed;
-    }
-    if (options.scene.frames < 2) throw UsageError("--frames must be at least 2");
-    if (options.warmup < 0 || options.warmup >= options.scene.frames - 1) {
-      throw UsageError("--warmup must be in [0, frames - 2]");
-    }
-  } catch (const UsageError& e) {
-    std::cerr << "memory_probe: " << e.what() << "\n" << kUsage;
-    parsed.exit_code = 2;
+  scene::ScenarioConfig& cfg = options.scene;
+  cfg.name = "multi";
+  cfg.seed = 1;
+  cfg.frames = 300;
+  cfg.size = cv::Size(1280, 720);
+  int seed = 1;
+  std::string size;
+  CLI::App app{"Measures the memory of core::Pipeline with three tracks on a generated scene (heap, RSS, "
+               "allocations per frame after the warm-up, live tracks).",
+               "memory_probe"};
+  tools::setToolDefaults(app);
+  app.add_option("--frames", cfg.frames, "frames processed (default 300; frame 0 starts the tracks)")
+      ->type_name("N");
+  app.add_option("--size", size, "frame size (default 1280x720)")->type_name("WxH");
+  app.add_option("--scenario", cfg.name,
+                 "generated scene with three obstacles (default multi; see generate_scene --list)")
+      ->type_name("S");
+  app.add_option("--seed", seed, "scene seed (default 1)")->type_name("N");
+  app.add_option("--warmup", options.warmup, "frames after the start before allocations are counted (default 30)")
+      ->type_name("N");
+  app.add_option("--start", options.start_count,
+                 "start K of the three tracks from the ground truth (default 3; fewer leaves the\n"
+                 "others to auto-initialisation, which then searches every frame)")
+      ->type_name("K");
+  app.add_option("--budget-mib", options.budget_mib, "core heap budget in MiB (default 30)")->type_name("M");
+  app.footer(
+      "Exit codes: 0 all targets met, 1 a target missed (tracks not started / mostly not 3, heap over\n"
+      "the budget, allocations per frame after warm-up), 2 usage or scene error.");
+  parsed.exit_code = tools::parseCommandLine(app, argc, argv);
+  if (parsed.exit_code) return parsed;
+  cfg.seed = static_cast<std::uint64_t>(seed);
+  if (!size.empty() && !tools::parseSize(size, "xX", &cfg.size)) {
+    parsed.exit_code = tools::usageError(app, "--size wants WxH, got " + size);
+  } else if (options.start_count < 1 || options.start_count > 3) {
+    parsed.exit_code = tools::usageError(app, "--start must be 1, 2 or 3");
+  } else if (cfg.frames < 2) {
+    parsed.exit_code = tools::usageError(app, "--frames must be at least 2");
+  } else if (options.warmup < 0 || options.warmup >= cfg.frames - 1) {
+    parsed.exit_code = tools::usageError(app, "--warmup must be in [0, frames - 2]");
   }
   return parsed;
 }
