@@ -6,6 +6,8 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "obstacle_tracker/core/box_geometry.h"
+
 namespace obstacle_tracker {
 namespace core {
 
@@ -23,8 +25,7 @@ void ExpansionMeter::setReference(const cv::Mat& frame, const cv::Rect2f& box) {
   have_reference_ = false;
   const uchar* measured_frame = measured_frame_;  // valid for this call only
   measured_frame_ = nullptr;
-  if (!std::isfinite(box.x) || !std::isfinite(box.y) || !std::isfinite(box.width) || !std::isfinite(box.height) ||
-      !(box.width >= 1.0f) || !(box.height >= 1.0f) || !(std::max(box.width, box.height) >= kMinBoxSide)) {
+  if (!boxHasPixels(box) || !(std::max(box.width, box.height) >= kMinBoxSide)) {
     return;
   }
   // Buffers for this frame's width and type (a large box is box-filtered from a frame row).

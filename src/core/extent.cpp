@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "obstacle_tracker/core/box_geometry.h"
 #include "obstacle_tracker/core/grey_histogram.h"
 #include "obstacle_tracker/core/segmentation.h"
 
@@ -32,24 +33,18 @@ bool inRing(int x, int y, int w, int h) { return x < kRing || y < kRing || x >= 
 
 cv::Rect2f ExtentGrower::grow(const cv::Mat& frame, const cv::Rect2f& core, double share) {
   if (!(share > 0.0) || frame.empty() || (frame.type() != CV_8UC1 && frame.type() != CV_8UC3)) return core;
-  if (!std::isfinite(core.x) || !std::isfinite(core.y) || !std::isfinite(core.width) ||
-      !std::isfinite(core.height) || core.width < 1.0f || core.height < 1.0f) {
-    return core;
-  }
-  // Window and core in pixels, clipped to the frame (in float first: a box far outside must not
-  // overflow an int).
-  const float fw = static_cast<float>(frame.cols), fh = static_cast<float>(frame.rows);
-  auto clampX = [&](float v) { return static_cast<int>(std::min(std::max(v, 0.0f), fw)); };
-  auto clampY = [&](float v) { return static_cast<int>(std::min(std::max(v, 0.0f), fh)); };
+  if (!boxHasPixels(core)) return core;
+  // Window and core in pixels, clipped to the frame.
   const float margin = std::max(kMinMargin, std::max(core.width, core.height));
-  const int wx0 = clampX(std::floor(core.x - margin)), wy0 = clampY(std::floor(core.y - margin));
-  const int wx1 = clampX(std::ceil(core.x + core.width + margin)), wy1 = clampY(std::ceil(core.y + core.height + margin));
-  const int w = wx1 - wx0, h = wy1 - wy0;
+  const cv::Rect window = grownPixelRect(core, margin, frame.size());
+  const cv::Rect core_px = grownPixelRect(core, 0.0f, frame.size());
+  const int wx0 = window.x, wy0 = window.y;
+  const int w = window.width, h = window.height;
   if (w < 2 * kRing + 3 || h < 2 * kRing + 3) return core;
-  const int cx0 = std::max(kRing, clampX(std::floor(core.x)) - wx0);
-  const int cy0 = std::max(kRing, clampY(std::floor(core.y)) - wy0);
-  const int cx1 = std::min(w - kRing, clampX(std::ceil(core.x + core.width)) - wx0);
-  const int cy1 = std::min(h - kRing, clampY(std::ceil(core.y + core.height)) - wy0);
+  const int cx0 = std::max(kRing, core_px.x - wx0);
+  const int cy0 = std::max(kRing, core_px.y - wy0);
+  const int cx1 = std::min(w - kRing, core_px.br().x - wx0);
+  const int cy1 = std::min(h - kRing, core_px.br().y - wy0);
   if (cx1 <= cx0 || cy1 <= cy0) return core;
 
   const cv::Mat win = frame(cv::Rect(wx0, wy0, w, h));

@@ -83,10 +83,7 @@ inline cv::Rect2f clampCentre(const cv::Rect2f& b, const cv::Size& frame) {
 }
 
 inline bool usableBox(const cv::Rect2f& b, const cv::Size& frame) {
-  if (!std::isfinite(b.x) || !std::isfinite(b.y) || !std::isfinite(b.width) ||
-      !std::isfinite(b.height) || b.width < 1.0f || b.height < 1.0f) {
-    return false;
-  }
+  if (!boxHasPixels(b)) return false;
   return (b & cv::Rect2f(0.0f, 0.0f, static_cast<float>(frame.width), static_cast<float>(frame.height)))
              .area() > 0.0f;
 }

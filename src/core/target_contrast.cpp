@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "obstacle_tracker/core/box_geometry.h"
 #include "obstacle_tracker/core/grey_histogram.h"
 
 namespace obstacle_tracker {
@@ -43,17 +44,12 @@ int sampleRing(const cv::Mat& frame, const cv::Rect& window, const cv::Rect& ins
 
 float TargetContrast::measure(const cv::Mat& frame, const cv::Rect2f& box) const {
   if (frame.empty() || (frame.type() != CV_8UC1 && frame.type() != CV_8UC3)) return kUnknown;
-  if (!std::isfinite(box.x) || !std::isfinite(box.y) || !std::isfinite(box.width) ||
-      !std::isfinite(box.height) || box.width < 1.0f || box.height < 1.0f) {
-    return kUnknown;
-  }
+  if (!boxHasPixels(box)) return kUnknown;
   const float fw = static_cast<float>(frame.cols), fh = static_cast<float>(frame.rows);
   auto clampX = [&](float v) { return static_cast<int>(std::min(std::max(v, 0.0f), fw)); };
   auto clampY = [&](float v) { return static_cast<int>(std::min(std::max(v, 0.0f), fh)); };
   const float margin = std::max(kMinMargin, 0.5f * std::max(box.width, box.height));
-  const cv::Rect window(cv::Point(clampX(std::floor(box.x - margin)), clampY(std::floor(box.y - margin))),
-                        cv::Point(clampX(std::ceil(box.x + box.width + margin)),
-                                  clampY(std::ceil(box.y + box.height + margin))));
+  const cv::Rect window = grownPixelRect(box, margin, frame.size());
   const cv::Rect inside(cv::Point(clampX(std::round(box.x)), clampY(std::round(box.y))),
                         cv::Point(clampX(std::round(box.x + box.width)), clampY(std::round(box.y + box.height))));
   if (inside.area() <= 0) return kUnknown;

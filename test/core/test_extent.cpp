@@ -11,6 +11,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "alloc_counter.h"
+#include "noisy_frame.h"
 #include "obstacle_tracker/core/segmentation.h"
 
 namespace core = obstacle_tracker::core;
@@ -29,13 +30,7 @@ cv::Mat blobFrame(cv::Size size, cv::Point2f c, double s, double a, double backg
       f.at<float>(y, x) = static_cast<float>(background + a * std::exp(-r2 / (2.0 * s * s)));
     }
   }
-  cv::Mat n(size, CV_32F);
-  cv::RNG rng(seed);
-  rng.fill(n, cv::RNG::NORMAL, 0.0, noise);
-  f += n;
-  cv::Mat out;
-  f.convertTo(out, CV_8U);
-  return out;
+  return obstacle_tracker::testing::withNoiseAs8Bit(f, noise, seed);
 }
 
 // The blob's pixels above half its amplitude: the box Otsu gives of a blob on a flat background.

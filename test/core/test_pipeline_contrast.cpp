@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
+#include "noisy_frame.h"
 #include "obstacle_tracker/core/pipeline.h"
 
 using obstacle_tracker::core::Obstacle;
@@ -32,13 +33,7 @@ cv::Mat clouds(unsigned seed) {
 cv::Mat frameOf(const cv::Mat& sky, unsigned frame_seed, const cv::Rect* aircraft) {
   cv::Mat f = sky.clone();
   if (aircraft != nullptr) f(*aircraft) += 70.0;
-  cv::Mat noise(f.size(), CV_32F);
-  cv::RNG rng(frame_seed);
-  rng.fill(noise, cv::RNG::NORMAL, 0.0, 2.0);
-  f += noise;
-  cv::Mat out;
-  f.convertTo(out, CV_8U);
-  return out;
+  return obstacle_tracker::testing::withNoiseAs8Bit(f, 2.0, frame_seed);
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "alloc_counter.h"
+#include "noisy_frame.h"
 #include "obstacle_tracker/core/target_contrast.h"
 
 namespace core = obstacle_tracker::core;
@@ -18,14 +19,7 @@ namespace {
 
 // Sky: a level with Gaussian noise (sigma grey levels).
 cv::Mat skyFrame(cv::Size size, double level, double sigma, unsigned seed = 3) {
-  cv::Mat f(size, CV_32F, cv::Scalar(level));
-  cv::Mat n(size, CV_32F);
-  cv::RNG rng(seed);
-  rng.fill(n, cv::RNG::NORMAL, 0.0, sigma);
-  f += n;
-  cv::Mat out;
-  f.convertTo(out, CV_8U);
-  return out;
+  return obstacle_tracker::testing::withNoiseAs8Bit(cv::Mat(size, CV_32F, cv::Scalar(level)), sigma, seed);
 }
 
 }  // namespace
