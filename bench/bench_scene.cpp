@@ -1,6 +1,6 @@
 // Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
 //
-// Scene generator speed (issue 4: every scenario >= 200 frames/s at 640x480). Items/s = frames
+// Scene generator speed (target: every scenario >= 200 frames/s at 640x480). Items/s = frames
 // per second of renderFrame (construction, i.e. the panorama, is outside the timed loop). Peer:
 // decoding the same frame from JPEG, which is what reading a stored sequence costs at least.
 #include <string>

@@ -13,18 +13,9 @@
 #include <atomic>
 #include <cstddef>
 
-#if defined(__has_feature)
-#if __has_feature(address_sanitizer) || __has_feature(memory_sanitizer) || \
-    __has_feature(thread_sanitizer)
-#define OT_SANITIZED_BUILD 1
-#endif
-#endif
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-#define OT_SANITIZED_BUILD 1
-#endif
+#include "obstacle_tracker/core/allocation_counting.h"
 
-#if defined(__GLIBC__) && !defined(OT_SANITIZED_BUILD)
-#define OT_COUNT_ALLOCATIONS 1
+#ifdef OT_COUNT_ALLOCATIONS
 #include <malloc.h>  // declared before they are replaced (also mallinfo2 for the tests)
 namespace {
 std::atomic<long> g_allocations{0};

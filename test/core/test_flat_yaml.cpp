@@ -209,8 +209,8 @@ TEST(FlatYaml, ParameterLoaderNamesTheLineAndRefusesTheFuzzersFind) {
   EXPECT_NE(messages[1].find("'max_obstacles' is empty"), std::string::npos) << messages[1];
   EXPECT_NE(messages[2].find("'merge_iou' is a map or list"), std::string::npos) << messages[2];
 
-  // fuzz_params (CI, 2026-11-22): cv::FileStorage let std::length_error escape on this text,
-  // which took the process down. Now a std::runtime_error naming the text and line.
+  // A text found by fuzz_params, on which a parser let std::length_error escape (the process
+  // died): it must be a std::runtime_error naming the text and line.
   const std::string found("peak_thr%eshold::\xe0\xa4\xcf\xd7 8]\xf3\xff\xff\xff\0\0\0\0\0\0\0\0\0\0"
                           "\0\0\0\0\0\0\0\0\0\x9e\x9e\x9e\x9e\x9e\x9e\x9e\x9e\x9e\x9e\x9e\x9e\x9e"
                           "\x9e\x9e",

@@ -1,6 +1,6 @@
 // Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
 //
-// Issue 3's memory target for core::Pipeline with three tracks on 1280x720 frames: no heap
+// The memory target for core::Pipeline with three tracks on 1280x720 frames: no heap
 // allocation per frame once the tracks exist, and the core's heap in use under 30 MiB. The scene
 // ("multi": three obstacles whose paths cross) is rendered completely before the Pipeline is
 // constructed, and the generator destroyed, so that only the core's memory is measured.

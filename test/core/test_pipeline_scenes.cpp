@@ -89,12 +89,9 @@ TEST(PipelineScenes, CrossingAutoInit) {
 }
 
 // A collision course: the obstacle keeps its bearing and only grows, so there is no motion to
-// confirm it by; auto_init_min_growth's growth cue does. Measured 2026-11-22 (480x360, seed 3):
-// `approach` starts at frame 52 of 120 on the aircraft and follows it on every later frame (the
-// box lags its growth, see ApproachTimeToContact); without the cue it never started. `demo`, the
-// same approach over a lattice tower with camera jitter, starts on the aircraft at frame 52 of
-// 150; before the motion cue's vacated-position test it started on a point of the tower (the
-// candidate sliding along the lattice looked like a mover).
+// confirm it by; auto_init_min_growth's growth cue does (without it `approach` never starts).
+// `demo`, the same approach over a lattice tower with camera jitter, checks that a candidate
+// sliding along the lattice is not taken for a mover (the motion cue's vacated-position test).
 TEST(PipelineScenes, CollisionCourseAutoInit) {
   for (const auto& [name, frames] : {std::pair<const char*, int>{"approach", 120}, {"demo", 150}}) {
     const SceneRun r = runScene(name, frames, false);

@@ -1,6 +1,6 @@
 // Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
 //
-// Bad input into core::Pipeline (issue 6): empty and wrong-type frames, tiny, thin and huge
+// Bad input into core::Pipeline: empty and wrong-type frames, tiny, thin and huge
 // frames, resolution and type changes mid-stream, flat, saturated and noise frames, duplicate,
 // backward, jumping and non-finite stamps, non-contiguous frames, bad startTrack boxes and
 // NaN / infinite / negative / huge parameters. Nothing may crash; the only exception allowed is

@@ -7,21 +7,7 @@
 // wrapped: kCountsAllocations is false and the functions below return 0.
 #pragma once
 
-#include <cstdlib>  // defines __GLIBC__ on glibc
-
-#if defined(__has_feature)
-#if __has_feature(address_sanitizer) || __has_feature(memory_sanitizer) || \
-    __has_feature(thread_sanitizer)
-#define OT_SANITIZED_BUILD 1
-#endif
-#endif
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-#define OT_SANITIZED_BUILD 1
-#endif
-
-#if defined(__GLIBC__) && !defined(OT_SANITIZED_BUILD)
-#define OT_COUNT_ALLOCATIONS 1
-#endif
+#include "obstacle_tracker/core/allocation_counting.h"
 
 namespace obstacle_tracker {
 namespace memory_probe_tool {

@@ -1,7 +1,7 @@
 // Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
 //
 // Rostest (bad_input.test): a real nodelet manager with two ObstacleTrackerNodelets, fed every
-// kind of bad input (issue 6): unsupported encodings, empty / tiny / thin / 8000x8000 images,
+// kind of bad input: unsupported encodings, empty / tiny / thin / 8000x8000 images,
 // data shorter than step x height, step shorter than a row, sizes whose step x height overflows
 // 32 bits, odd 16-bit steps, duplicate / backward / jumping / zero stamps, flat frames, 32FC1
 // full of NaN; bad parameters at startup (launch file) and through dynamic_reconfigure; bad
