@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "evaluate/machine.h"
 #include "evaluate/number_format.h"
 
 namespace obstacle_tracker {
@@ -42,6 +43,7 @@ int trackerIndex(const std::vector<std::string>& trackers, const std::string& na
 void writeHeader(std::ostream& md, const EvaluateOptions& options, const EvaluationResults& res) {
   md << "# Evaluation results\n\n"
      << "`" << options.command << "`  \n"
+     << "Machine: " << machineDescription() << "  \n"
      << nowUtc() << "; " << res.seqs.size() << " sequences; " << options.jobs
      << " parallel job(s), each single-threaded; "
      << "OTB precision at 20 px / success AUC (21 IoU thresholds), means over sequences; fps = frames per "
