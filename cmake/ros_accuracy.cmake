@@ -31,10 +31,12 @@ set(OT_ACCURACY_REAL_BARS min_precision20:=0.7 min_auc:=0.35)
 
 set(OT_ACCURACY_PYTHONPATH ${CATKIN_DEVEL_PREFIX}/${CATKIN_GLOBAL_PYTHON_DESTINATION})
 set(OT_TO_BAG ${PROJECT_SOURCE_DIR}/scripts/sequence_to_bag.py)
-# The bags hold ObstacleArray ground truth: a changed message definition must remake them.
-set(OT_TO_BAG_DEPS ${OT_TO_BAG} ${PROJECT_SOURCE_DIR}/scripts/otb_metrics.py
+# The bags hold ObstacleArray ground truth: a changed message definition must remake them. The
+# converter reads the ground-truth file with the score_boxes tool (the package's one reader).
+set(OT_TO_BAG_DEPS ${OT_TO_BAG} ${PROJECT_SOURCE_DIR}/scripts/score_boxes_tool.py score_boxes
   ${PROJECT_SOURCE_DIR}/msg/Obstacle.msg ${PROJECT_SOURCE_DIR}/msg/ObstacleArray.msg
   ${PROJECT_NAME}_generate_messages_py)
+set(OT_TO_BAG_ARGS --frame-id camera_optical --score-boxes $<TARGET_FILE:score_boxes>)
 
 # One bag per size: the accuracy size (sent lock-step), and 1280x720 sent at its 30 Hz like a
 # camera (frames the tracker cannot take are dropped, and must be dropped only then). Each config
@@ -54,7 +56,7 @@ foreach(variant scene scene_720)
             --frames 150 --size ${size} --quiet --out ${OT_ACCURACY_DIR}/${variant}
     COMMAND ${CMAKE_COMMAND} -E env PYTHONPATH=${OT_ACCURACY_PYTHONPATH}
             /usr/bin/python3 ${OT_TO_BAG} ${OT_ACCURACY_DIR}/${variant} ${OT_ACCURACY_DIR}/${variant}.bag
-            --frame-id camera_optical --quiet
+            ${OT_TO_BAG_ARGS} --quiet
     COMMAND ${CMAKE_COMMAND} -E remove_directory ${OT_ACCURACY_DIR}/${variant}
     DEPENDS generate_scene ${OT_TO_BAG_DEPS} ${OT_ACCURACY_DIR}/${variant}.cfg
     COMMENT "accuracy rostest: scene ${OT_ACCURACY_SCENE} ${size} -> accuracy/${variant}.bag"
@@ -67,7 +69,7 @@ if(EXISTS ${OT_ACCURACY_SHARED}/groundtruth_rect.txt)
   add_custom_command(OUTPUT ${OT_ACCURACY_DIR}/real.bag
     COMMAND ${CMAKE_COMMAND} -E env PYTHONPATH=${OT_ACCURACY_PYTHONPATH}
             /usr/bin/python3 ${OT_TO_BAG} ${OT_ACCURACY_SHARED} ${OT_ACCURACY_DIR}/real.bag
-            --frame-id camera_optical --encoding mono8 --max-frames ${OT_ACCURACY_SEQUENCE_FRAMES} --quiet
+            ${OT_TO_BAG_ARGS} --encoding mono8 --max-frames ${OT_ACCURACY_SEQUENCE_FRAMES} --quiet
     DEPENDS ${OT_TO_BAG_DEPS} ${OT_ACCURACY_SHARED}/groundtruth_rect.txt
     COMMENT "accuracy rostest: ${OT_ACCURACY_SEQUENCE} -> accuracy/real.bag"
     VERBATIM)

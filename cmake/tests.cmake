@@ -20,3 +20,15 @@ foreach(src ${OT_CORE_TESTS})
   gtest_discover_tests(${name} DISCOVERY_MODE PRE_TEST DISCOVERY_TIMEOUT 60
     PROPERTIES LABELS core)
 endforeach()
+
+# The command-line tools from the outside (exit codes, messages): test/tools/TOOL_cli.sh runs
+# against the built TOOL, for each tool that has one and is built here.
+file(GLOB OT_TOOL_TESTS CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/test/tools/*_cli.sh)
+foreach(script ${OT_TOOL_TESTS})
+  get_filename_component(name ${script} NAME_WE)
+  string(REGEX REPLACE "_cli$" "" tool ${name})
+  if(TARGET ${tool})
+    add_test(NAME ${name} COMMAND bash ${script} $<TARGET_FILE:${tool}>)
+    set_tests_properties(${name} PROPERTIES LABELS tools TIMEOUT 60)
+  endif()
+endforeach()

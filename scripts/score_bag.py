@@ -3,8 +3,8 @@
 """Scores a tracker's recorded obstacles against ground truth with the evaluate tool's metrics.
 
 usage: score_bag.py RECORDED.bag --gt GT.bag|groundtruth_rect.txt [--topic T] [--gt-topic T]
-                    [--fps F] [--start-stamp S] [--name NAME] [--csv FILE]
-       score_bag.py --boxes BOXES.txt --gt groundtruth_rect.txt      (a box file of `evaluate`)
+                    [--fps F] [--start-stamp S] [--name NAME] [--csv FILE] [--score-boxes PATH]
+       score_bag.py --boxes BOXES.txt --gt groundtruth_rect.txt  (a box file of evaluate or track_sequence)
 
 RECORDED.bag holds the tracker's obstacle_tracker/ObstacleArray (`~obstacles`, recorded by
 launch/replay.launch); the default topic is the one ObstacleArray topic ending in "obstacles".
@@ -16,16 +16,19 @@ text file whose i-th line belongs to stamp START_STAMP + i / FPS (the converter'
 
 Prints OTB precision@20, success AUC, mean centre error, long-term precision/recall/F (when the
 target is absent in some frames), how many frames got exactly one output, and the tracker's
-processing_time (median, 99th percentile). Needs python3-rosbag and the package's generated
-messages (see sequence_to_bag.py); --boxes needs neither.
+processing_time (median, 99th percentile). The ground-truth file is read and every score computed
+by the package's C++ `score_boxes` tool (the metrics of `evaluate`; see score_boxes_tool.py for
+where it is looked for); --score-boxes gives its path. Needs python3-rosbag and the package's
+generated messages (see sequence_to_bag.py); --boxes needs neither.
 """
 import argparse
+import bisect
 import math
 import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import otb_metrics  # noqa: E402
+import score_boxes_tool  # noqa: E402
 
 
 def stamp_ns(header):
@@ -62,7 +65,7 @@ def read_gt_bag(path, topic):
     with rosbag.Bag(path) as bag:
         topic = find_topic(bag, topic, None) if topic is None else topic
         for _, msg, _ in bag.read_messages(topics=[topic]):
-            box = otb_metrics.ABSENT
+            box = score_boxes_tool.ABSENT
             if msg.obstacles:
                 o = msg.obstacles[0]
                 box = (o.x, o.y, o.width, o.height)
@@ -80,7 +83,7 @@ def read_recorded(path, topic, gt_topic):
     with rosbag.Bag(path) as bag:
         topic = find_topic(bag, topic, gt_topic)
         for _, msg, t in bag.read_messages(topics=[topic]):
-            box, conf = otb_metrics.ABSENT, 0.0
+            box, conf = score_boxes_tool.ABSENT, 0.0
             if msg.obstacles:
                 o = msg.obstacles[0]
                 box, conf = (o.x, o.y, o.width, o.height), float(o.confidence)
@@ -105,7 +108,7 @@ def fmt(v, p=3):
     return "-" if v is None or (isinstance(v, float) and not math.isfinite(v)) else ("%.*f" % (p, v))
 
 
-def main(argv=None):
+def parse_args(argv):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("recorded", nargs="?", help="bag with the tracker's ObstacleArray")
     ap.add_argument("--gt", required=True, help="ground-truth bag (/ground_truth) or OTB text file")
@@ -113,88 +116,84 @@ def main(argv=None):
     ap.add_argument("--gt-topic", default="/ground_truth")
     ap.add_argument("--fps", type=float, default=30.0, help="frame rate for a text ground truth")
     ap.add_argument("--start-stamp", type=float, default=1000.0, help="first stamp for a text ground truth")
-    ap.add_argument("--boxes", default=None, help="score an `evaluate` box file (x,y,w,h,confidence per frame)")
+    ap.add_argument("--boxes", default=None,
+                    help="score a box file of evaluate or track_sequence (x,y,w,h,confidence per frame)")
     ap.add_argument("--name", default=None, help="row name (default: the recorded file's name)")
     ap.add_argument("--csv", default=None, help="append a CSV row with the scores to this file")
+    ap.add_argument("--score-boxes", default=None, metavar="PATH",
+                    help="the score_boxes tool (default: see score_boxes_tool.py)")
     args = ap.parse_args(argv)
+    if args.boxes and args.gt.endswith(".bag"):
+        ap.error("--boxes goes with a text ground truth")
+    if not args.boxes and not args.recorded:
+        ap.error("RECORDED.bag is required (or --boxes)")
+    return args
 
+
+def match_outputs(gt_frames, outputs, tol):
+    """The tracker's box and confidence for each ground-truth frame: the output with the same stamp
+    (or, when tol > 0, the nearest within tol ns); ABSENT and 0 where there is none."""
+    keys = sorted(outputs)
+    pred, conf = [], []
+    matched = set()
+    missing = duplicates = 0
+    for s, _ in gt_frames:
+        k = None
+        if s in outputs:
+            k = s
+        elif tol > 0 and keys:
+            j = bisect.bisect_left(keys, s)
+            best = min((keys[i] for i in (j - 1, j) if 0 <= i < len(keys)), key=lambda x: abs(x - s))
+            if abs(best - s) <= tol:
+                k = best
+        if k is None:
+            missing += 1
+            pred.append(score_boxes_tool.ABSENT)
+            conf.append(0.0)
+            continue
+        matched.add(k)
+        if len(outputs[k]) > 1:
+            duplicates += 1
+        b, c = outputs[k][0]
+        pred.append(b)
+        conf.append(c)
+    unknown = sum(1 for k in outputs if k not in matched)
+    summary = {"outputs": sum(len(v) for v in outputs.values()), "missing": missing,
+               "duplicates": duplicates, "unknown": unknown}
+    return pred, conf, summary
+
+
+def score_recorded(args, tool):
+    """Scores of the recorded bag: (scores, summary, processing times, latencies)."""
     text_gt = not args.gt.endswith(".bag")
-    if args.boxes:
-        if not text_gt:
-            sys.exit("score_bag: --boxes goes with a text ground truth")
-        gt = otb_metrics.load_gt(args.gt)
-        pred, conf = [], []
-        with open(args.boxes) as f:
-            for line in f:
-                v = [float(t) for t in line.replace(",", " ").split()]
-                if not v:
-                    continue
-                pred.append(tuple(v[:4]) if not otb_metrics.is_absent(tuple(v[:4])) else otb_metrics.ABSENT)
-                conf.append(v[4] if len(v) > 4 else 1.0)
-        n = min(len(gt), len(pred))
-        if len(pred) != len(gt):
-            print("score_bag: %d boxes for %d ground-truth lines; scoring the first %d" % (len(pred), len(gt), n),
-                  file=sys.stderr)
-        gt, pred, conf = gt[:n], pred[:n], conf[:n]
-        summary = {"outputs": n, "missing": 0, "duplicates": 0, "unknown": 0}
-        proc, lat = [], []
-        name = args.name or os.path.basename(args.boxes)
+    if text_gt:
+        boxes = score_boxes_tool.load_gt(args.gt, tool)
+        gt_frames = [(int(round((args.start_stamp + i / args.fps) * 1e9)), b) for i, b in enumerate(boxes)]
+        if not gt_frames:
+            sys.exit("score_bag: no ground truth in %s" % args.gt)
     else:
-        if not args.recorded:
-            ap.error("RECORDED.bag is required (or --boxes)")
-        if text_gt:
-            boxes = otb_metrics.load_gt(args.gt)
-            gt_frames = [(int(round((args.start_stamp + i / args.fps) * 1e9)), b) for i, b in enumerate(boxes)]
-        else:
-            gt_frames = read_gt_bag(args.gt, args.gt_topic)
-        topic, outputs, proc, lat = read_recorded(args.recorded, args.topic, args.gt_topic)
-        # Text ground truth: stamps from fps may differ from the converter's by rounding; match
-        # each to the nearest output stamp within a quarter frame.
-        tol = int(0.25e9 / args.fps) if text_gt else 0
-        keys = sorted(outputs)
-        gt, pred, conf = [], [], []
-        matched = set()
-        missing = duplicates = 0
-        import bisect
-        for s, box in gt_frames:
-            k = None
-            if s in outputs:
-                k = s
-            elif tol > 0 and keys:
-                j = bisect.bisect_left(keys, s)
-                best = min((keys[i] for i in (j - 1, j) if 0 <= i < len(keys)), key=lambda x: abs(x - s))
-                if abs(best - s) <= tol:
-                    k = best
-            gt.append(box)
-            if k is None:
-                missing += 1
-                pred.append(otb_metrics.ABSENT)
-                conf.append(0.0)
-                continue
-            matched.add(k)
-            if len(outputs[k]) > 1:
-                duplicates += 1
-            b, c = outputs[k][0]
-            pred.append(b)
-            conf.append(c)
-        unknown = sum(1 for k in outputs if k not in matched)
-        summary = {"outputs": sum(len(v) for v in outputs.values()), "missing": missing,
-                   "duplicates": duplicates, "unknown": unknown}
-        name = args.name or os.path.basename(args.recorded)
-        print("score_bag: %s on %s: %d outputs for %d ground-truth frames (%d frames without output, "
-              "%d with several, %d outputs with a stamp not in the ground truth)"
-              % (args.recorded, topic, summary["outputs"], len(gt_frames), missing, duplicates, unknown),
-              file=sys.stderr)
+        gt_frames = read_gt_bag(args.gt, args.gt_topic)
+    topic, outputs, proc, lat = read_recorded(args.recorded, args.topic, args.gt_topic)
+    # Text ground truth: stamps from fps may differ from the converter's by rounding; match
+    # each to the nearest output stamp within a quarter frame.
+    tol = int(0.25e9 / args.fps) if text_gt else 0
+    pred, conf, summary = match_outputs(gt_frames, outputs, tol)
+    print("score_bag: %s on %s: %d outputs for %d ground-truth frames (%d frames without output, "
+          "%d with several, %d outputs with a stamp not in the ground truth)"
+          % (args.recorded, topic, summary["outputs"], len(gt_frames), summary["missing"],
+             summary["duplicates"], summary["unknown"]), file=sys.stderr)
+    scores = score_boxes_tool.score(pred, conf, [b for _, b in gt_frames], tool)
+    return scores, summary, proc, lat
 
-    otb = otb_metrics.otb_scores(pred, gt)
-    absent = sum(1 for b in gt if otb_metrics.is_absent(b))
-    lt = otb_metrics.long_term_scores(pred, conf, gt) if absent else None
+
+def print_table(name, sc, proc, lat):
+    frames, absent = int(sc["frames"]), int(sc["absent_frames"])
     header = ["run", "frames", "absent", "P@20", "AUC", "centre err (px)", "no box"]
-    row = [name, len(gt), absent, fmt(otb["precision20"]), fmt(otb["auc"]), fmt(otb["mean_centre_error"], 1),
-           fmt(otb["lost_fraction"])]
-    if lt:
+    row = [name, frames, absent, fmt(sc["precision20"]), fmt(sc["auc"]), fmt(sc["mean_centre_error"], 1),
+           fmt(sc["lost_fraction"])]
+    if absent:
         header += ["LT Pr", "LT Re", "LT F"]
-        row += [fmt(lt["precision"]), fmt(lt["recall"]), fmt(lt["fscore"])]
+        row += [fmt(sc["lt_precision"]), fmt(sc["lt_recall"]), fmt(sc["lt_fscore"])]
     if proc:
         header += ["proc median (ms)", "proc p99 (ms)"]
         row += [fmt(1e3 * percentile(proc, 50), 2), fmt(1e3 * percentile(proc, 99), 2)]
@@ -203,18 +202,37 @@ def main(argv=None):
             header += ["latency median (ms)", "latency p99 (ms)"]
             row += [fmt(1e3 * med_lat, 1), fmt(1e3 * percentile(lat, 99), 1)]
     print(table([header, row]))
+
+
+def append_csv(path, name, sc, summary):
+    lt = int(sc["absent_frames"]) > 0
+    new = not os.path.exists(path)
+    with open(path, "a") as f:
+        if new:
+            f.write("run,frames,absent,precision20,auc,mean_centre_error,lost_fraction,lt_precision,lt_recall,"
+                    "lt_fscore,outputs,missing,duplicates,unknown\n")
+        f.write(",".join(str(x) for x in [
+            name, int(sc["frames"]), int(sc["absent_frames"]), "%.4f" % sc["precision20"], "%.4f" % sc["auc"],
+            "%.2f" % sc["mean_centre_error"], "%.4f" % sc["lost_fraction"],
+            "%.4f" % sc["lt_precision"] if lt else "", "%.4f" % sc["lt_recall"] if lt else "",
+            "%.4f" % sc["lt_fscore"] if lt else "", summary["outputs"], summary["missing"],
+            summary["duplicates"], summary["unknown"]]) + "\n")
+
+
+def main(argv=None):
+    args = parse_args(argv)
+    tool = score_boxes_tool.find_tool(args.score_boxes)
+    if args.boxes:
+        scores = score_boxes_tool.score_files(args.boxes, args.gt, tool)
+        summary = {"outputs": int(scores["frames"]), "missing": 0, "duplicates": 0, "unknown": 0}
+        proc, lat = [], []
+        name = args.name or os.path.basename(args.boxes)
+    else:
+        scores, summary, proc, lat = score_recorded(args, tool)
+        name = args.name or os.path.basename(args.recorded)
+    print_table(name, scores, proc, lat)
     if args.csv:
-        new = not os.path.exists(args.csv)
-        with open(args.csv, "a") as f:
-            if new:
-                f.write("run,frames,absent,precision20,auc,mean_centre_error,lost_fraction,lt_precision,lt_recall,"
-                        "lt_fscore,outputs,missing,duplicates,unknown\n")
-            f.write(",".join(str(x) for x in [
-                name, len(gt), absent, "%.4f" % otb["precision20"], "%.4f" % otb["auc"],
-                "%.2f" % otb["mean_centre_error"], "%.4f" % otb["lost_fraction"],
-                "%.4f" % lt["precision"] if lt else "", "%.4f" % lt["recall"] if lt else "",
-                "%.4f" % lt["fscore"] if lt else "", summary["outputs"], summary["missing"],
-                summary["duplicates"], summary["unknown"]]) + "\n")
+        append_csv(args.csv, name, scores, summary)
     return 0
 
 

@@ -5,7 +5,7 @@
 usage: sequence_to_bag.py SEQ OUT.bag [--fps F] [--frame-id camera] [--fx FX] [--fy FY]
                           [--cx CX] [--cy CY] [--hfov DEG] [--gt FILE] [--encoding auto|bgr8|mono8]
                           [--start-stamp S] [--max-frames N] [--image-topic T] [--info-topic T]
-                          [--gt-topic T]
+                          [--gt-topic T] [--score-boxes PATH]
 
 Writes, per frame i (stamp = start_stamp + i / fps, also the bag time):
   IMAGE_TOPIC (default /camera/image_raw)    sensor_msgs/Image (bgr8, mono8 or mono16 as decoded)
@@ -15,7 +15,9 @@ Writes, per frame i (stamp = start_stamp + i / fps, also the bag time):
   GT_TOPIC    (default /ground_truth)        obstacle_tracker/ObstacleArray: one obstacle (id 1,
               confidence 1, STATE_TRACKING) with the ground-truth box; empty when absent
 all with the same header (stamp, frame_id). The frame rate is --fps, else the video's, else the
-`fps` of scene.yaml / fps.txt, else 30 (the OTB convention).
+`fps` of scene.yaml / fps.txt, else 30 (the OTB convention). The ground-truth file is read by the
+package's C++ `score_boxes` tool (--score-boxes gives its path; see score_boxes_tool.py for where
+it is looked for otherwise), so that it means here what it means to the tracker's tools.
 
 Needs Debian's python3-rosbag, python3-sensor-msgs, python3-opencv, and the package's generated
 Python messages: source <build>/devel/setup.bash, or put <build>/devel/lib/python3/dist-packages
@@ -29,7 +31,7 @@ import re
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import otb_metrics  # noqa: E402
+import score_boxes_tool  # noqa: E402
 
 IMAGE_EXT = {".jpg", ".jpeg", ".png", ".bmp", ".tif", ".tiff", ".pgm", ".ppm", ".pbm", ".webp"}
 
@@ -80,7 +82,7 @@ def read_key_value(path, key):
 class SequenceSource:
     """Frames (decoded as stored) and ground truth of an OTB folder, image folder or video."""
 
-    def __init__(self, path, gt_path=None):
+    def __init__(self, path, gt_path=None, score_boxes=None):
         import cv2
         self.cv2 = cv2
         self.path = path
@@ -128,7 +130,7 @@ class SequenceSource:
                     break
         else:
             sys.exit("sequence_to_bag: %s does not exist" % path)
-        self.gt = otb_metrics.load_gt(gt_path) if gt_path else []
+        self.gt = score_boxes_tool.load_gt(gt_path, score_boxes_tool.find_tool(score_boxes)) if gt_path else []
         self.gt_path = gt_path
 
     def frames(self):
@@ -146,7 +148,7 @@ class SequenceSource:
                 yield img
 
     def gt_at(self, i):
-        return self.gt[i] if i < len(self.gt) else otb_metrics.ABSENT
+        return self.gt[i] if i < len(self.gt) else score_boxes_tool.ABSENT
 
 
 def image_message(img, encoding, Image):
@@ -194,6 +196,8 @@ def main(argv=None):
     ap.add_argument("--image-topic", default="/camera/image_raw")
     ap.add_argument("--info-topic", default="/camera/camera_info")
     ap.add_argument("--gt-topic", default="/ground_truth")
+    ap.add_argument("--score-boxes", default=None, metavar="PATH",
+                    help="the score_boxes tool, which reads the ground truth (default: see score_boxes_tool.py)")
     ap.add_argument("--quiet", action="store_true")
     args = ap.parse_args(argv)
 
@@ -202,7 +206,7 @@ def main(argv=None):
     from sensor_msgs.msg import CameraInfo, Image
     Obstacle, ObstacleArray = import_messages()
 
-    src = SequenceSource(args.sequence, args.gt)
+    src = SequenceSource(args.sequence, args.gt, args.score_boxes)
     fps = args.fps or src.fps or 30.0
     if not (fps > 0):
         sys.exit("sequence_to_bag: --fps must be > 0")
@@ -238,7 +242,7 @@ def main(argv=None):
             gt.target_frame = args.frame_id
             gt.image_width, gt.image_height = w, h
             box = src.gt_at(i)
-            if not otb_metrics.is_absent(box):
+            if not score_boxes_tool.is_absent(box):
                 o = Obstacle()
                 o.id = 1
                 o.x, o.y, o.width, o.height = box

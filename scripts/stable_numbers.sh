@@ -3,7 +3,7 @@
 #
 # Do the scores depend on the machine? track_sequence on a few clips, with OpenCV's run-time CPU
 # dispatch as it is, limited to the baseline instruction set, and on one thread; reports OTB
-# precision at 20 px and success AUC of each (scripts/score_bag.py), --init gt and --init auto,
+# precision at 20 px and success AUC of each (score_boxes), --init gt and --init auto,
 # whether they agree within 0.02 and whether the outputs are byte-identical; exits non-zero when
 # one does not agree (docs/portability.md: today the dispatch-limited runs do not). Clips:
 # two generated scenes, and antiuav_ir_35, Vase and lasot_airplane-1 (whole clips) from
@@ -16,7 +16,7 @@ BUILD=${OT_BUILD_DIR:-_build}
 BIN=$BUILD/devel/lib/obstacle_tracker
 TMP=$(mktemp -d /tmp/ot_stable_XXXXXX)
 trap 'rm -rf "$TMP"' EXIT
-for tool in track_sequence generate_scene; do
+for tool in track_sequence generate_scene score_boxes; do
   [ -x "$BIN/$tool" ] || { echo "stable_numbers: $BIN/$tool not built"; exit 1; }
 done
 
@@ -37,8 +37,8 @@ done
 settings=("dispatch-limited OPENCV_CPU_DISABLE=AVX512F,AVX2,FMA3,AVX,FP16,POPCNT"
           "one-thread OPENCV_FOR_THREADS_NUM=1")
 score() {  # P@20 and AUC of a boxes file against a ground truth: "p20 auc"
-  python3 scripts/score_bag.py --boxes "$1" --gt "$2" --name x | tail -1 |
-    awk -F'|' '{gsub(/ /, "", $5); gsub(/ /, "", $6); print $5, $6}'
+  "$BIN/score_boxes" "$1" --gt "$2" |
+    awk -F= '$1 == "precision20" { p = $2 } $1 == "auc" { a = $2 } END { printf "%.3f %.3f\n", p, a }'
 }
 status=0
 for clip in "${clips[@]}"; do

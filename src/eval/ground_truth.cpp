@@ -1,12 +1,14 @@
 // Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
 //
-// Ground-truth files: one box per line, 4 numbers x,y,w,h or 8 polygon corners; the rules are in
+// Ground-truth files (one box per line, 4 numbers x,y,w,h or 8 polygon corners) and tracker box
+// files (x,y,w,h[,confidence[,time_to_contact]]): one tokenizer for both; the rules are in
 // sequence.h.
 #include "obstacle_tracker/eval/sequence.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <stdexcept>
@@ -40,6 +42,15 @@ bool parseNumbers(const std::string& line, std::vector<double>* values) {
 
 bool isBlank(const std::string& line) {
   return std::all_of(line.begin(), line.end(), [](char c) { return isSeparator(c); });
+}
+
+// A directory opens as a stream that reads nothing, which would pass for an empty file.
+std::ifstream openTextFile(const std::string& path, const std::string& what) {
+  std::error_code ec;
+  std::ifstream in;
+  if (!std::filesystem::is_directory(path, ec)) in.open(path);
+  if (!in.is_open()) throw std::runtime_error("cannot open " + what + " '" + path + "'");
+  return in;
 }
 
 }  // namespace
@@ -104,9 +115,48 @@ std::vector<cv::Rect2f> parseGroundTruth(std::istream& in, const std::string& so
 }
 
 std::vector<cv::Rect2f> loadGroundTruth(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error("cannot open ground-truth file '" + path + "'");
+  std::ifstream in = openTextFile(path, "ground-truth file");
   return parseGroundTruth(in, path);
+}
+
+TrackerBoxes parseTrackerBoxes(std::istream& in, const std::string& source) {
+  TrackerBoxes out;
+  std::string line;
+  std::vector<double> v;
+  int line_no = 0;
+  int blank_run = 0;  // blank lines not yet known to be trailing
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (isBlank(line)) {
+      ++blank_run;
+      continue;
+    }
+    const auto fail = [&](const std::string& why) {
+      return std::runtime_error(source + ":" + std::to_string(line_no) + ": " + why + ": '" +
+                                line.substr(0, 80) + "'");
+    };
+    if (blank_run > 0) {
+      throw std::runtime_error(source + ":" + std::to_string(line_no - blank_run) +
+                               ": blank line (a tracker box file has a line for every frame)");
+    }
+    if (!parseNumbers(line, &v) || v.size() < 4 || v.size() > 6) {
+      throw fail("not a tracker box (expected x,y,w,h[,confidence[,time_to_contact]])");
+    }
+    const float confidence = v.size() > 4 ? static_cast<float>(v[4]) : 1.0f;
+    if (!std::isfinite(confidence)) throw fail("the confidence is not a finite number");
+    const cv::Rect2f r(static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2]),
+                       static_cast<float>(v[3]));
+    const bool finite = std::isfinite(r.x) && std::isfinite(r.y) && std::isfinite(r.width) &&
+                        std::isfinite(r.height);
+    out.boxes.push_back(finite && isPresent(r) ? r : cv::Rect2f());
+    out.confidence.push_back(confidence);
+  }
+  return out;
+}
+
+TrackerBoxes loadTrackerBoxes(const std::string& path) {
+  std::ifstream in = openTextFile(path, "box file");
+  return parseTrackerBoxes(in, path);
 }
 
 }  // namespace eval

@@ -5,6 +5,8 @@
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <string>
+#include <utility>
 
 #include <unistd.h>
 
@@ -20,6 +22,7 @@ using obstacle_tracker::eval::isPresent;
 using obstacle_tracker::eval::parseFpsText;
 using obstacle_tracker::eval::parseGroundTruth;
 using obstacle_tracker::eval::parseGroundTruthLine;
+using obstacle_tracker::eval::parseTrackerBoxes;
 using obstacle_tracker::eval::Sequence;
 
 namespace {
@@ -103,6 +106,50 @@ TEST(SequenceGroundTruth, BadLineNamesSourceAndLine) {
     FAIL() << "no exception";
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("gt.txt:3"), std::string::npos) << e.what();
+  }
+}
+
+// What evaluate and track_sequence write: 5 and 6 values; 4 values have confidence 1.
+TEST(TrackerBoxFile, EvaluateAndTrackSequenceLines) {
+  std::istringstream in("1.5,2,3,4,0.25\r\n0,0,0,0,0.7\n5 6 7 8\n9,10,11,12,0.500,inf\n0,0,0,0,0,inf\n\n");
+  const auto r = parseTrackerBoxes(in, "t");
+  ASSERT_EQ(r.boxes.size(), 5u);  // the trailing blank line dropped
+  ASSERT_EQ(r.confidence.size(), 5u);
+  expectBox(r.boxes[0], 1.5f, 2, 3, 4);
+  EXPECT_FLOAT_EQ(r.confidence[0], 0.25f);
+  EXPECT_FALSE(isPresent(r.boxes[1]));
+  EXPECT_FLOAT_EQ(r.confidence[1], 0.7f);
+  expectBox(r.boxes[2], 5, 6, 7, 8);
+  EXPECT_FLOAT_EQ(r.confidence[2], 1.0f);
+  expectBox(r.boxes[3], 9, 10, 11, 12);
+  EXPECT_FLOAT_EQ(r.confidence[3], 0.5f);
+  EXPECT_FALSE(isPresent(r.boxes[4]));
+}
+
+TEST(TrackerBoxFile, NonFiniteBoxIsTheZeroBox) {
+  std::istringstream in("nan,2,3,4,0.5\n1,inf,3,4,0.5\n");
+  const auto r = parseTrackerBoxes(in);
+  ASSERT_EQ(r.boxes.size(), 2u);
+  for (const cv::Rect2f& b : r.boxes) expectBox(b, 0, 0, 0, 0);
+}
+
+TEST(TrackerBoxFile, BadLinesNameSourceAndLine) {
+  const std::pair<const char*, const char*> cases[] = {
+      {"1,2,3,4\n1,2,3\n", "b.txt:2: not a tracker box"},
+      {"1,2,3,4\n1,2,3,4,5,6,7\n", "b.txt:2: not a tracker box"},
+      {"x,y,w,h,c\n1,2,3,4\n", "b.txt:1: not a tracker box"},
+      {"1,2,3,4,abc\n", "b.txt:1: not a tracker box"},
+      {"1,2,3,4\n1,2,3,4,nan\n", "b.txt:2: the confidence is not a finite number"},
+      {"1,2,3,4\n\n\n1,2,3,4\n", "b.txt:2: blank line"},
+  };
+  for (const auto& c : cases) {
+    std::istringstream in(c.first);
+    try {
+      parseTrackerBoxes(in, "b.txt");
+      ADD_FAILURE() << "no exception for " << c.first;
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find(c.second), std::string::npos) << e.what();
+    }
   }
 }
 

@@ -3,7 +3,8 @@
 // Reading image sequences with ground truth: an OTB-layout folder (img/ + groundtruth_rect.txt),
 // a plain folder of images, or a video file (+ an optional ground-truth file). Frames are decoded
 // one at a time; FrameConverter turns any decoded frame into what the core accepts (CV_8UC1 or
-// CV_8UC3 BGR). Shared by track_sequence and the evaluation tool.
+// CV_8UC3 BGR). Shared by track_sequence and the evaluation tool. Also the box files trackers
+// write, read back with the ground truth's rules (score_boxes).
 #pragma once
 
 #include <istream>
@@ -35,6 +36,26 @@ std::vector<cv::Rect2f> parseGroundTruth(std::istream& in, const std::string& so
 
 // Reads a ground-truth file. Throws std::runtime_error when it cannot be opened or parsed.
 std::vector<cv::Rect2f> loadGroundTruth(const std::string& path);
+
+// ---- Tracker box files -------------------------------------------------------------------------
+// What evaluate (OUT/boxes/SEQ/TRACKER.txt) and track_sequence write: one line per frame,
+// x,y,w,h[,confidence[,time_to_contact]], the separators of a ground-truth line. A box that is
+// absent (a NaN or an infinity, a non-positive width or height) is the zero box {0,0,0,0}, "no
+// target", whatever its confidence; without a confidence it is 1.
+
+struct TrackerBoxes {
+  std::vector<cv::Rect2f> boxes;
+  std::vector<float> confidence;  // same length
+};
+
+// Parses a whole box file's text (CRLF accepted; trailing blank lines dropped). Unlike a ground
+// truth it has no header and no blank frame: a tracker writes a line for every frame. Throws
+// std::runtime_error naming `source` and the line number for a line that is not 4 to 6 numbers,
+// or whose confidence is not finite.
+TrackerBoxes parseTrackerBoxes(std::istream& in, const std::string& source = "input");
+
+// Reads a box file. Throws std::runtime_error when it cannot be opened or parsed.
+TrackerBoxes loadTrackerBoxes(const std::string& path);
 
 // ---- Frames for the core -----------------------------------------------------------------------
 

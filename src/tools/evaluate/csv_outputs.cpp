@@ -64,8 +64,8 @@ void writeBoxFile(const fs::path& path, const ev::RunResult& r) {
     if (ev::isAbsent(b)) {
       bf << "0,0,0,0," << std::setprecision(4) << r.confidence[f] << "\n";
     } else {
-      // Four decimals: other tools (scripts/score_bag.py --boxes) must score the same boxes, and
-      // at 0.01 px a rounded box crosses an IoU threshold now and then.
+      // Four decimals: score_boxes must score the same boxes from the file (40-evaluate checks
+      // it), and at 0.01 px a rounded box crosses an IoU threshold now and then.
       bf << std::setprecision(4) << b.x << "," << b.y << "," << b.width << "," << b.height << ","
          << std::setprecision(4) << r.confidence[f] << "\n";
     }

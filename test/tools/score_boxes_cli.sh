@@ -1,0 +1,67 @@
+#!/usr/bin/env bash
+# Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
+#
+# score_boxes from the outside: --help and usage errors, every input error (a missing or malformed
+# file, counts that differ) as a message naming the problem and exit code 1 rather than a crash,
+# and the scores of boxes equal to the ground truth.
+#   usage: score_boxes_cli.sh PATH/TO/score_boxes
+set -uo pipefail
+TOOL=${1:?usage: score_boxes_cli.sh PATH/TO/score_boxes}
+TMP=$(mktemp -d /tmp/ot_score_boxes_XXXXXX)
+trap 'rm -rf "$TMP"' EXIT
+failures=0
+
+# expect CODE PATTERN ARGS...: the tool exits with CODE and its standard error (or, for code 0,
+# its standard output) matches the extended regex PATTERN.
+expect() {
+  local code=$1 pattern=$2 got
+  shift 2
+  "$TOOL" "$@" > "$TMP/out" 2> "$TMP/err"
+  got=$?
+  local text=$TMP/err
+  [ "$code" -eq 0 ] && text=$TMP/out
+  if [ "$got" -ne "$code" ] || ! grep -Eq -- "$pattern" "$text"; then
+    echo "FAILED: score_boxes $*: exit $got (want $code), output does not match '$pattern':"
+    cat "$TMP/out" "$TMP/err"
+    failures=$((failures + 1))
+  fi
+}
+
+printf '10,10,20,20\n0,0,0,0\n30,30,10,10\n' > "$TMP/gt.txt"
+printf '10,10,20,20,0.9\n0,0,0,0,0\n30,30,10,10,0.8\n' > "$TMP/same.txt"
+printf '10,10,20,20,0.9\nbroken\n30,30,10,10,0.8\n' > "$TMP/malformed.txt"
+printf '10,10,20,20,0.9\n0,0,0,0,0\n' > "$TMP/short.txt"
+printf '10,10,20,20,0.9\n0,0,0,0,nan\n30,30,10,10,0.8\n' > "$TMP/nan_confidence.txt"
+printf '10,10,20,20,0.9\n\n30,30,10,10,0.8\n' > "$TMP/blank.txt"
+printf '10,10,20,20\nx y\n' > "$TMP/gt_malformed.txt"
+: > "$TMP/empty.txt"
+
+expect 0 'Usage' --help
+expect 2 'score_boxes: .*--gt' "$TMP/same.txt"
+expect 2 'score_boxes: BOXES is required' --gt "$TMP/gt.txt"
+expect 2 'score_boxes: --print-gt takes no BOXES' "$TMP/same.txt" --gt "$TMP/gt.txt" --print-gt
+expect 2 'score_boxes: ' "$TMP/same.txt" --gt "$TMP/gt.txt" --bogus
+expect 1 "cannot open box file '$TMP/missing.txt'" "$TMP/missing.txt" --gt "$TMP/gt.txt"
+expect 1 "cannot open ground-truth file '$TMP/missing.txt'" "$TMP/same.txt" --gt "$TMP/missing.txt"
+expect 1 "malformed.txt:2: not a tracker box" "$TMP/malformed.txt" --gt "$TMP/gt.txt"
+expect 1 "nan_confidence.txt:2: the confidence is not a finite number" "$TMP/nan_confidence.txt" --gt "$TMP/gt.txt"
+expect 1 "blank.txt:2: blank line" "$TMP/blank.txt" --gt "$TMP/gt.txt"
+expect 1 "gt_malformed.txt:2: not a box" "$TMP/same.txt" --gt "$TMP/gt_malformed.txt"
+expect 1 "gt_malformed.txt:2: not a box" --gt "$TMP/gt_malformed.txt" --print-gt
+expect 1 "short.txt' has 2 boxes for 3 ground-truth frames" "$TMP/short.txt" --gt "$TMP/gt.txt"
+expect 1 "no box in '$TMP/empty.txt'" "$TMP/empty.txt" --gt "$TMP/gt.txt"
+expect 1 "cannot open box file" "$TMP" --gt "$TMP/gt.txt"
+
+# The ground truth scores itself: every centre within 20 px, IoU 1 (above every success threshold
+# but the last, so the AUC is 20/21); the target is absent once, so the long-term scores follow.
+expect 0 '^precision20=1$' "$TMP/same.txt" --gt "$TMP/gt.txt"
+for line in frames=3 gt_frames=2 absent_frames=1 'auc=0.95238095[0-9]*' mean_centre_error=0 lost_fraction=0 \
+            lt_precision=1 lt_recall=1 lt_fscore=1 'lt_threshold=0.80000001[0-9]*'; do
+  grep -Eq "^$line\$" "$TMP/out" || { echo "FAILED: no line $line in:"; cat "$TMP/out"; failures=$((failures + 1)); }
+done
+expect 0 '^0,0,0,0$' --gt "$TMP/gt.txt" --print-gt
+cmp -s "$TMP/out" <(printf '10,10,20,20\n0,0,0,0\n30,30,10,10\n') \
+  || { echo "FAILED: --print-gt printed:"; cat "$TMP/out"; failures=$((failures + 1)); }
+
+[ "$failures" -eq 0 ] || { echo "score_boxes_cli: $failures failures"; exit 1; }
+echo "score_boxes_cli: all checks passed"
