@@ -1,8 +1,6 @@
 // Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
 #include "obstacle_tracker/ros/image_conversion.h"
 
-#include <algorithm>
-#include <cmath>
 #include <cstring>
 #include <sstream>
 
@@ -74,60 +72,6 @@ std::vector<std::string> supportedEncodings() {
   std::vector<std::string> names;
   for (const EncodingInfo& info : kEncodings) names.emplace_back(info.name);
   return names;
-}
-
-PercentileStretch::PercentileStretch(double low_percentile, double high_percentile)
-    : histogram_(65536, 0) {
-  setPercentiles(low_percentile, high_percentile);
-}
-
-void PercentileStretch::setPercentiles(double low_percentile, double high_percentile) {
-  if (!(low_percentile >= 0.0 && high_percentile <= 100.0 && low_percentile < high_percentile)) {
-    std::ostringstream msg;
-    msg << "16-bit stretch percentiles must satisfy 0 <= low < high <= 100, got " << low_percentile
-        << " and " << high_percentile;
-    throw std::invalid_argument(msg.str());
-  }
-  low_percentile_ = low_percentile;
-  high_percentile_ = high_percentile;
-}
-
-void PercentileStretch::apply(const cv::Mat& src, cv::Mat& dst) {
-  if (src.depth() != CV_16U || src.empty()) {
-    throw std::invalid_argument("PercentileStretch::apply expects a non-empty CV_16U image");
-  }
-  std::fill(histogram_.begin(), histogram_.end(), 0u);
-  const int values_per_row = src.cols * src.channels();
-  for (int r = 0; r < src.rows; ++r) {
-    const std::uint16_t* row = src.ptr<std::uint16_t>(r);
-    for (int i = 0; i < values_per_row; ++i) ++histogram_[row[i]];
-  }
-  const double total = static_cast<double>(values_per_row) * src.rows;
-  const double low_count = total * low_percentile_ / 100.0;
-  const double high_count = total * high_percentile_ / 100.0;
-  int low = 0;
-  int high = 65535;
-  double cumulative = 0.0;
-  bool low_found = false;
-  for (int v = 0; v < 65536; ++v) {
-    cumulative += histogram_[v];
-    if (!low_found && cumulative > low_count) {
-      low = v;
-      low_found = true;
-    }
-    if (cumulative >= high_count && histogram_[v] > 0) {
-      high = v;
-      break;
-    }
-  }
-  if (high <= low) {  // flat image: keep the level visible instead of dividing by zero
-    if (low == 65535) low = 65534;
-    high = low + 1;
-  }
-  last_low_ = static_cast<std::uint16_t>(low);
-  last_high_ = static_cast<std::uint16_t>(high);
-  const double alpha = 255.0 / (high - low);
-  src.convertTo(dst, CV_8U, alpha, -low * alpha);  // saturating
 }
 
 const cv::Mat& FrameConverter::convert(const sensor_msgs::Image& msg) {

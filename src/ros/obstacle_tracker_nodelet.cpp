@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <sstream>
+#include <stdexcept>
 
 #include <boost/bind/bind.hpp>
 #include <boost/make_shared.hpp>
@@ -59,6 +60,25 @@ void ObstacleTrackerNodelet::loadParams() {
   params = bridge::paramsFromRos(pnh, params, &messages);
   for (const std::string& m : messages) NODELET_WARN("%s", m.c_str());
   params_ = params;
+
+  // The 16-bit stretch: the tools' defaults unless set (core/intensity_stretch.h).
+  core::IntensityStretch& stretch = converter_.stretch();
+  double low = core::kStretchLowPercentile, high = core::kStretchHighPercentile;
+  double smoothing = core::kStretchSmoothing;
+  pnh.param("mono16_low_percentile", low, low);
+  pnh.param("mono16_high_percentile", high, high);
+  pnh.param("mono16_smoothing", smoothing, smoothing);
+  try {
+    stretch.setPercentiles(low, high);
+  } catch (const std::invalid_argument& e) {
+    NODELET_ERROR("~mono16_low/high_percentile: %s; using %g and %g", e.what(),
+                  stretch.lowPercentile(), stretch.highPercentile());
+  }
+  try {
+    stretch.setSmoothing(smoothing);
+  } catch (const std::invalid_argument& e) {
+    NODELET_ERROR("~mono16_smoothing: %s; using %g", e.what(), stretch.smoothing());
+  }
 }
 
 void ObstacleTrackerNodelet::onInit() {
@@ -75,14 +95,6 @@ void ObstacleTrackerNodelet::onInit() {
     tf_timeout_ = 0.05;
   }
   pnh.param("use_camera_info", use_camera_info_, false);
-  double low = 1.0, high = 99.0;
-  pnh.param("mono16_low_percentile", low, low);
-  pnh.param("mono16_high_percentile", high, high);
-  try {
-    converter_.stretch().setPercentiles(low, high);
-  } catch (const std::exception& e) {
-    NODELET_ERROR("%s; using 1 and 99", e.what());
-  }
   if (!target_frame_.empty()) {
     tf_buffer_.reset(new tf2_ros::Buffer());
     tf_listener_.reset(new tf2_ros::TransformListener(*tf_buffer_, nh));

@@ -177,7 +177,7 @@ int run(const Options& opt) {
   }
 
   core::Pipeline pipeline(params);
-  eval::FrameConverter converter(0.5, 99.95, 0.2);
+  eval::FrameConverter converter;  // the nodelet's stretch for 16-bit frames
   const bool show_progress = !opt.quiet && isatty(fileno(stderr));
   const int total = seq.frameCount();
   const double fps = seq.fps();

@@ -33,7 +33,7 @@ SceneRun runScene(const std::string& name, int frames, bool gt_start, const core
              cv::Size size = cv::Size(480, 360), bool mono16 = false, unsigned seed = 3) {
   scene::SceneGenerator gen = scene::makeScenario(name, seed, frames, size, mono16);
   core::Pipeline pipeline(params);
-  eval::FrameConverter converter(0.5, 99.95, 0.2);
+  eval::FrameConverter converter;  // the nodelet's stretch for 16-bit frames
   SceneRun run;
   std::vector<cv::Rect2f> predicted, gt;
   cv::Mat raw;

@@ -182,47 +182,34 @@ TEST(FrameConverterTest, FourChannelsBecomeBgr) {
   EXPECT_EQ(o2.at<std::uint8_t>(1, 1), 9);
 }
 
-TEST(FrameConverterTest, SixteenBitRobustStretch) {
-  // A ramp 1000..1999 over 1000 pixels per row plus one hot pixel at 65535: the stretch must
-  // follow the ramp, not the hot pixel.
-  cv::Mat img(10, 1000, CV_16UC1);
-  for (int r = 0; r < img.rows; ++r) {
-    for (int c = 0; c < img.cols; ++c) img.at<std::uint16_t>(r, c) = static_cast<std::uint16_t>(1000 + c);
-  }
-  img.at<std::uint16_t>(0, 0) = 65535;
-  FrameConverter conv(0.5, 99.5);
-  const cv::Mat& out = conv.convert(img);
-  ASSERT_EQ(out.type(), CV_8UC1);
-  EXPECT_NEAR(conv.lastLow(), 1005, 2);
-  EXPECT_NEAR(conv.lastHigh(), 1994, 2);
-  EXPECT_EQ(out.at<std::uint8_t>(5, 0), 0);
-  EXPECT_EQ(out.at<std::uint8_t>(5, 999), 255);
-  EXPECT_NEAR(out.at<std::uint8_t>(5, 500), 127, 2);
-  EXPECT_EQ(out.at<std::uint8_t>(0, 0), 255);  // the hot pixel clips
-  // Monotone along the ramp.
-  for (int c = 1; c < 1000; ++c) EXPECT_GE(out.at<std::uint8_t>(5, c), out.at<std::uint8_t>(5, c - 1));
-}
-
-TEST(FrameConverterTest, SixteenBitColourAndFloatWithNaN) {
+TEST(FrameConverterTest, DeepFramesGoThroughTheCoreStretch) {
+  // The stretch itself is tested in test_intensity_stretch; here: channel layout first, then the
+  // core's stretch with its defaults (the nodelet's too).
   FrameConverter conv;
+  EXPECT_EQ(conv.stretch().lowPercentile(), obstacle_tracker::core::kStretchLowPercentile);
+  EXPECT_EQ(conv.stretch().highPercentile(), obstacle_tracker::core::kStretchHighPercentile);
+  EXPECT_EQ(conv.stretch().smoothing(), obstacle_tracker::core::kStretchSmoothing);
   cv::Mat img(4, 4, CV_16UC3, cv::Scalar(100, 200, 300));
   img.at<cv::Vec3w>(0, 0) = cv::Vec3w(0, 0, 0);
   const cv::Mat& out = conv.convert(img);
   ASSERT_EQ(out.type(), CV_8UC3);
   EXPECT_EQ(out.at<cv::Vec3b>(3, 3)[2], 255);
-
-  cv::Mat f(3, 3, CV_32FC1, cv::Scalar(0.5f));
-  f.at<float>(0, 0) = 0.0f;
-  f.at<float>(2, 2) = 1.0f;
-  f.at<float>(1, 0) = std::nanf("");
-  FrameConverter per_frame(0.0, 100.0);
-  const cv::Mat& o = per_frame.convert(f);
-  ASSERT_EQ(o.type(), CV_8UC1);
-  EXPECT_EQ(o.at<std::uint8_t>(0, 0), 0);
-  EXPECT_EQ(o.at<std::uint8_t>(2, 2), 255);
-  EXPECT_NEAR(o.at<std::uint8_t>(1, 1), 128, 1);
-  EXPECT_EQ(o.at<std::uint8_t>(1, 0), 0);  // NaN -> low end
-  EXPECT_TRUE(std::isnan(f.at<float>(1, 0)));  // input untouched
+  cv::Mat bgra16(4, 4, CV_16UC4, cv::Scalar(1000, 2000, 5000, 65535));
+  FrameConverter per_frame(0.0, 100.0, 1.0);
+  const cv::Mat& o4 = per_frame.convert(bgra16);
+  ASSERT_EQ(o4.type(), CV_8UC3);  // alpha dropped before the stretch: it sets no range
+  EXPECT_EQ(o4.at<cv::Vec3b>(1, 1), cv::Vec3b(0, 64, 255));
+  EXPECT_EQ(per_frame.lastHigh(), 5000);
+  cv::Mat f(3, 3, CV_32FC2, cv::Scalar(0.5f, 7.0f));
+  f.at<cv::Vec2f>(0, 0)[0] = 0.0f;
+  f.at<cv::Vec2f>(2, 2)[0] = 1.0f;
+  const cv::Mat& o2 = per_frame.convert(f);
+  ASSERT_EQ(o2.type(), CV_8UC1);  // first channel only
+  EXPECT_EQ(o2.at<std::uint8_t>(2, 2), 255);
+  EXPECT_EQ(per_frame.lastHigh(), 1.0);
+  // An 8-bit frame after a deeper one is passed through as ever.
+  cv::Mat grey(3, 3, CV_8UC1, cv::Scalar(9));
+  EXPECT_EQ(per_frame.convert(grey).data, grey.data);
 }
 
 TEST(FrameConverterTest, BadFramesThrow) {

@@ -1,15 +1,18 @@
 // Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
 //
 // Known-answer tests of the ROS adapter's pure functions (no master needed): image encodings to
-// the core's CV_8UC1 / CV_8UC3, the 16-bit stretch, Bayer patterns, malformed messages, camera
-// geometry, parameters <-> dynamic_reconfigure, obstacle messages.
+// the core's CV_8UC1 / CV_8UC3, the 16-bit stretch (the same as the tools'), Bayer patterns,
+// malformed messages, camera geometry, parameters <-> dynamic_reconfigure, obstacle messages.
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
+#include "obstacle_tracker/eval/sequence.h"
 #include "obstacle_tracker/ros/camera_geometry.h"
 #include "obstacle_tracker/ros/conversions.h"
 #include "obstacle_tracker/ros/image_conversion.h"
@@ -19,7 +22,6 @@
 using obstacle_tracker::bridge::CameraGeometry;
 using obstacle_tracker::bridge::FrameConverter;
 using obstacle_tracker::bridge::MalformedImage;
-using obstacle_tracker::bridge::PercentileStretch;
 using obstacle_tracker::bridge::UnsupportedEncoding;
 namespace core = obstacle_tracker::core;
 
@@ -105,23 +107,34 @@ TEST(ImageConversion, Mono16IsStretchedBetweenPercentiles) {
   }
 }
 
-TEST(ImageConversion, PercentileStretchIgnoresHotPixels) {
-  cv::Mat m16(100, 100, CV_16UC1, cv::Scalar(3000));
-  m16(cv::Rect(0, 0, 100, 50)).setTo(3100);
-  m16.at<std::uint16_t>(7, 7) = 65535;  // hot pixel
-  m16.at<std::uint16_t>(8, 8) = 0;      // dead pixel
-  PercentileStretch stretch(1.0, 99.0);
-  cv::Mat out;
-  stretch.apply(m16, out);
-  EXPECT_EQ(stretch.lastLow(), 3000);
-  EXPECT_EQ(stretch.lastHigh(), 3100);
-  EXPECT_EQ(out.at<uchar>(10, 10), 255);
-  EXPECT_EQ(out.at<uchar>(90, 90), 0);
-  // A flat image does not divide by zero.
-  cv::Mat flat(10, 10, CV_16UC1, cv::Scalar(500));
-  stretch.apply(flat, out);
-  EXPECT_EQ(out.at<uchar>(5, 5), 0);
-  EXPECT_THROW(stretch.setPercentiles(50.0, 10.0), std::invalid_argument);
+TEST(ImageConversion, NodeletAndToolsStretchSixteenBitAlike) {
+  // The nodelet's converter (messages) and the tools' (decoded files) share core::IntensityStretch
+  // and its defaults, so an offline score on 16-bit frames describes the nodelet: the same frames,
+  // smoothed range and all, must come out byte for byte the same. Thermal-like frames whose gain
+  // drifts, with a hot pixel, in 1, 3 and 4 channels.
+  const std::vector<std::pair<int, const char*>> layouts = {
+      {CV_16UC1, "mono16"}, {CV_16UC3, "bgr16"}, {CV_16UC4, "bgra16"}};
+  for (const auto& layout : layouts) {
+    FrameConverter nodelet;
+    obstacle_tracker::eval::FrameConverter tools;
+    cv::RNG rng(11);
+    for (int i = 0; i < 20; ++i) {
+      cv::Mat frame(48, 64, layout.first);
+      const double gain = 1.0 + 0.05 * std::sin(0.7 * i);
+      rng.fill(frame, cv::RNG::NORMAL, cv::Scalar::all(5000.0 * gain), cv::Scalar::all(300.0));
+      cv::rectangle(frame, cv::Rect(20 + i, 15, 8, 6), cv::Scalar::all(9000.0 * gain), -1);
+      frame.at<std::uint16_t>(3, 3) = 65535;
+      for (bool big_endian : {false, true}) {
+        if (big_endian && i % 5 != 0) continue;  // a few big-endian messages on the way
+        const cv::Mat& from_message = nodelet.convert(wrap(frame, layout.second, big_endian));
+        const cv::Mat& from_file = tools.convert(frame);
+        ASSERT_EQ(from_message.type(), from_file.type()) << layout.second;
+        ASSERT_EQ(maxAbsDiff(from_message, from_file), 0.0) << layout.second << " frame " << i;
+        EXPECT_EQ(nodelet.stretch().lastLow(), tools.lastLow());
+        EXPECT_EQ(nodelet.stretch().lastHigh(), tools.lastHigh());
+      }
+    }
+  }
 }
 
 TEST(ImageConversion, BayerPatternsDemosaicToTheRightColour) {

@@ -14,6 +14,8 @@
 
 #include <opencv2/core.hpp>
 
+#include "obstacle_tracker/core/intensity_stretch.h"
+
 namespace obstacle_tracker {
 namespace eval {
 
@@ -61,16 +63,14 @@ TrackerBoxes loadTrackerBoxes(const std::string& path);
 
 // Converts any decoded frame to CV_8UC1 or CV_8UC3 (BGR), the types core::Pipeline accepts.
 // 8-bit 1- and 3-channel frames pass through without a copy; 4-channel -> BGR; 2-channel ->
-// its first channel; 16-bit and float frames get a robust linear stretch: the [low, high]
-// percentiles of the frame's values (all channels together; NaN/inf ignored) map to [0, 255],
-// values outside are clipped (so a few dead or hot pixels do not flatten the picture). With
-// `smoothing` in (0, 1] the stretch range is an exponential moving average over the frames
-// converted so far (smoothing = weight of the newest frame; 1 = per-frame), which keeps the
-// brightness of a video from flickering. Buffers are reused between calls.
+// its first channel; 16-bit and float frames then go through core::IntensityStretch, the same
+// stretch (and defaults) as the nodelet's. Buffers are reused between calls.
 class FrameConverter {
  public:
-  explicit FrameConverter(double low_percent = 0.5, double high_percent = 99.95,
-                          double smoothing = 1.0);
+  // Throws std::invalid_argument for settings core::IntensityStretch refuses.
+  explicit FrameConverter(double low_percent = core::kStretchLowPercentile,
+                          double high_percent = core::kStretchHighPercentile,
+                          double smoothing = core::kStretchSmoothing);
 
   // Throws std::invalid_argument for an empty frame or more than 4 channels.
   // The result may share data with `in` (8-bit 1/3-channel) or with the converter's buffers:
@@ -78,29 +78,16 @@ class FrameConverter {
   const cv::Mat& convert(const cv::Mat& in);
 
   // Forgets the smoothed range (e.g. at the start of a new sequence).
-  void reset();
+  void reset() { stretch_.reset(); }
 
+  core::IntensityStretch& stretch() { return stretch_; }
   // The last stretch range applied to a non-8-bit frame (value mapped to 0 and to 255).
-  double lastLow() const { return low_; }
-  double lastHigh() const { return high_; }
+  double lastLow() const { return stretch_.lastLow(); }
+  double lastHigh() const { return stretch_.lastHigh(); }
 
  private:
-  // [lo, hi] of a 16-bit frame (1 or 3 channels) from a histogram of all its values.
-  void histogramRange16(const cv::Mat& src, double* lo, double* hi);
-  // `src` (1 or 3 channels, any depth but 8U and 16U; `in` is the caller's frame it came from) as
-  // 32-bit float with NaN set to the low end, in float_; [lo, hi] from a strided sample of its
-  // finite values (left alone when there is none).
-  const cv::Mat& floatWithSampledRange(const cv::Mat& in, const cv::Mat& src, double* lo,
-                                       double* hi);
-  // Smooths [lo, hi] into the running range and stretches `src` by it into out_ (CV_8U).
-  void stretchToOutput(const cv::Mat& src, double lo, double hi);
-
-  double low_percent_, high_percent_, smoothing_;
-  bool have_range_ = false;
-  double low_ = 0.0, high_ = 255.0;
-  std::vector<int> histogram_;
-  std::vector<float> samples_;
-  cv::Mat work_, float_, out_;
+  core::IntensityStretch stretch_;
+  cv::Mat work_, out_, stretched_;
 };
 
 // One-shot conversion with a per-frame stretch (same rules as FrameConverter).

@@ -13,7 +13,7 @@
 //   parameters  every core parameter under its params.h name in the private namespace,
 //               ~params_file (YAML, read first), dynamic_reconfigure (ObstacleTracker.cfg),
 //               ~target_frame, ~tf_timeout, ~use_camera_info, ~image_transport,
-//               ~mono16_low_percentile, ~mono16_high_percentile
+//               ~mono16_low_percentile, ~mono16_high_percentile, ~mono16_smoothing
 // Every callback catches everything: bad input is refused with a throttled log, never thrown
 // into the nodelet manager.
 #pragma once
