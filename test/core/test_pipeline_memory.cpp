@@ -4,7 +4,7 @@
 // allocation per frame once the tracks exist, and the core's heap in use under 30 MiB. The scene
 // ("multi": three obstacles whose paths cross) is rendered completely before the Pipeline is
 // constructed, and the generator destroyed, so that only the core's memory is measured.
-// (src/tools/memory_probe measures the same on 300 frames, with RSS; docs/results.md, "Memory".)
+// (src/tools/memory_probe measures the same on 300 frames, with RSS; docs/measurements.md, "Memory".)
 //
 // malloc, calloc, realloc, memalign, aligned_alloc and posix_memalign are interposed in this
 // test program (glibc exports the real ones as __libc_*), as in test_kcf_alloc.cpp; the heap in
