@@ -29,6 +29,7 @@ foreach(script ${OT_TOOL_TESTS})
   string(REGEX REPLACE "_cli$" "" tool ${name})
   if(TARGET ${tool})
     add_test(NAME ${name} COMMAND bash ${script} $<TARGET_FILE:${tool}>)
+    add_dependencies(tests ${tool})  # builds that make only `tests` (sanitizers) run it too
     set_tests_properties(${name} PROPERTIES LABELS tools TIMEOUT 60)
   endif()
 endforeach()
