@@ -150,10 +150,8 @@ void AutoInitializer::Impl::confirm(const cv::Mat& frame) {
       // fluctuates (a textured structure grown at 0.3 x its peak) moves its centre by a
       // fraction of its size without going anywhere.
       const double needed = std::max(params.auto_init_min_motion, 0.5 * std::max(t.box.width, t.box.height));
-      // The kLag-frame appearance test only while the history is that short-sighted too (see
-      // kMaxHistoryStride); over a longer history vacated() is the appearance check.
-      const bool changed = t.stride > 1 || changedAgainstBackground(t.box);
-      if (!t.still && motion >= needed && linearity >= kMinLinearity && changed && vacated(t)) {
+      if (!t.still && motion >= needed && linearity >= kMinLinearity && changedAgainstBackground(t.box) &&
+          vacated(t)) {
         // Steady motion raises the score up to 3x the threshold.
         score *= std::min(1.0, motion / (3.0 * params.auto_init_min_motion));
       } else {

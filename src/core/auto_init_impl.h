@@ -27,11 +27,7 @@
 //      stays put in the image) and the background (a static scene object moves exactly with the
 //      background) and vacated its old place (the local contrast there, carried with the
 //      background, has fallen under half of what it was: a peak wandering along a static lattice
-//      or edge leaves the structure behind) and, while its history covers only its last kHistory
-//      frames, changed its appearance against the background over kLag frames (beyond that the
-//      history is thinned to span up to kHistory x kMaxHistoryStride frames, and the vacated
-//      test is the appearance check at that time scale: a slow mover barely changes in kLag
-//      frames), or, when auto_init_min_growth > 0, once its object
+//      or edge leaves the structure behind), or, when auto_init_min_growth > 0, once its object
 //      pixels (P >= 0.1 x its peak around the core) have grown steadily by that much in
 //      ln sqrt(pixels) over its history: an obstacle on a collision course keeps its bearing and
 //      only grows. Still candidates (pixels unchanged for 3 frames) are kept for this cue only;
@@ -93,12 +89,6 @@ struct Candidate {
 };
 
 constexpr int kHistory = 32;  // positions kept per track for the motion fit
-// A full history is thinned to every other entry and then kept at twice the spacing, up to
-// this spacing: a track's history then spans up to kHistory x kMaxHistoryStride frames, so that
-// a slow mover (a distant aircraft under a still camera: a few px per second) shows its
-// displacement and vacates its old place within the history, while a fast one is judged on
-// its last frames as before.
-constexpr int kMaxHistoryStride = 8;
 
 inline cv::Point2f apply(const cv::Matx33d& h, cv::Point2f p) {
   const cv::Vec3d q = h * cv::Vec3d(p.x, p.y, 1.0);
@@ -111,11 +101,8 @@ struct Track {
   std::array<cv::Point2f, kHistory> img, rel;
   std::array<float, kHistory> log_size;  // ln sqrt(size_px): the growth cue's size
   std::array<int, kHistory> contrast;    // local contrast at the position then (vacated test)
-  int count = 0;   // entries written (beyond kHistory the oldest are overwritten)
-  int stride = 1;  // frames between entries (1, 2, 4, ... kMaxHistoryStride)
+  int count = 0;
   void remember(int frame, cv::Point2f p, const cv::Matx33d& image_to_first, int size_px, int local_contrast) {
-    if (count > 0 && frame - frames[static_cast<size_t>((count - 1) % kHistory)] < stride) return;
-    if (count == kHistory && stride < kMaxHistoryStride) thin();
     const int k = count % kHistory;
     frames[k] = frame;
     contrast[k] = local_contrast;
@@ -123,18 +110,6 @@ struct Track {
     img[k] = p;
     rel[k] = apply(image_to_first, p);
     ++count;
-  }
-  // Keeps every other entry (in order, at the front) and doubles the spacing.
-  void thin() {
-    for (int i = 0; i < kHistory / 2; ++i) {
-      frames[i] = frames[2 * i];
-      img[i] = img[2 * i];
-      rel[i] = rel[2 * i];
-      log_size[i] = log_size[2 * i];
-      contrast[i] = contrast[2 * i];
-    }
-    count = kHistory / 2;
-    stride *= 2;
   }
   cv::Point2f centre, velocity;
   cv::Rect box;
