@@ -147,9 +147,7 @@ TEST(ExtentGrower, BadInputReturnsTheBoxUnchanged) {
 }
 
 TEST(ExtentGrower, NoAllocationAfterTheLargestWindow) {
-#ifndef OT_COUNT_ALLOCATIONS
-  GTEST_SKIP() << "allocation counting needs glibc and no sanitizer (which interposes malloc)";
-#else
+  OT_SKIP_UNLESS_COUNTING_ALLOCATIONS();
   core::ExtentGrower grower;
   const cv::Mat frame = blobFrame(cv::Size(200, 160), cv::Point2f(100.0f, 80.0f), 4.0, 120.0, 60.0, 1.0);
   grower.grow(frame, halfMaxBox(cv::Point2f(100.0f, 80.0f), 4.0), kShare);  // largest window first
@@ -161,5 +159,4 @@ TEST(ExtentGrower, NoAllocationAfterTheLargestWindow) {
   }
   g_counting = false;
   EXPECT_EQ(g_allocations.load(), 0);
-#endif
 }

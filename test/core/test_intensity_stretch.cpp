@@ -194,15 +194,8 @@ TEST(IntensityStretch, BadSettingsAndFramesThrow) {
 }
 
 TEST(IntensityStretch, NoAllocationPerFrameAfterTheFirst) {
-#ifndef OT_COUNT_ALLOCATIONS
-  GTEST_SKIP() << "allocation counting needs glibc and no sanitizer (which interposes malloc)";
-#else
-  // The counter sees allocations made inside OpenCV (so a zero below means something).
-  g_allocations = 0;
-  g_counting = true;
-  { cv::Mat probe(64, 64, CV_32F); }
-  g_counting = false;
-  ASSERT_GT(g_allocations.load(), 0);
+  OT_SKIP_UNLESS_COUNTING_ALLOCATIONS();
+  ASSERT_GT(probeOpenCvAllocations(), 0);  // so that a zero below means something
 
   cv::Mat m16(480, 640, CV_16UC3), f32(480, 640, CV_32FC1);
   cv::randu(m16, 4000, 9000);
@@ -221,5 +214,4 @@ TEST(IntensityStretch, NoAllocationPerFrameAfterTheFirst) {
   }
   g_counting = false;
   EXPECT_EQ(g_allocations.load(), 0);
-#endif
 }

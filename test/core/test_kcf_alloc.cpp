@@ -19,7 +19,7 @@ namespace oc = obstacle_tracker::core;
 
 namespace {
 
-[[maybe_unused]] std::vector<cv::Mat> makeClip(int type, cv::Rect box, int count) {
+std::vector<cv::Mat> makeClip(int type, cv::Rect box, int count) {
   cv::Mat bg(480, 640, CV_8UC3);
   cv::RNG rng(5);
   rng.fill(bg, cv::RNG::UNIFORM, 0, 256);
@@ -39,15 +39,8 @@ namespace {
 }  // namespace
 
 TEST(KcfAllocation, NoHeapAllocationPerFrameAfterInit) {
-#ifndef OT_COUNT_ALLOCATIONS
-  GTEST_SKIP() << "allocation counting needs glibc and no sanitizer (which interposes malloc)";
-#else
-  // The counter sees allocations made inside OpenCV (so a zero below means something).
-  g_allocations = 0;
-  g_counting = true;
-  { cv::Mat probe(64, 64, CV_32F); }
-  g_counting = false;
-  ASSERT_GT(g_allocations.load(), 0);
+  OT_SKIP_UNLESS_COUNTING_ALLOCATIONS();
+  ASSERT_GT(probeOpenCvAllocations(), 0);  // so that a zero below means something
 
   struct Case {
     int type;
@@ -88,5 +81,4 @@ TEST(KcfAllocation, NoHeapAllocationPerFrameAfterInit) {
     EXPECT_EQ(g_allocations.load(), 0)
         << "box " << c.box << " type " << c.type << " scale filter " << c.scale_filter;
   }
-#endif
 }

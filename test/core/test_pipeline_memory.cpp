@@ -40,7 +40,7 @@ struct Clip {
   double fps = 30.0;
 };
 
-[[maybe_unused]] const Clip& clip() {
+const Clip& clip() {
   static const Clip c = [] {
     Clip k;
     os::SceneGenerator gen = os::makeScenario("multi", 1, kFrames, cv::Size(1280, 720));
@@ -55,7 +55,7 @@ struct Clip {
   return c;
 }
 
-[[maybe_unused]] int alive(const std::vector<oc::Obstacle>& out) {
+int alive(const std::vector<oc::Obstacle>& out) {
   int n = 0;
   for (const auto& o : out) n += o.state != oc::TrackState::kLost ? 1 : 0;
   return n;
@@ -71,17 +71,10 @@ long long heapInUse() {
 }  // namespace
 
 TEST(PipelineMemory, ThreeTracksNoHeapAllocationPerFrame) {
-#ifndef OT_COUNT_ALLOCATIONS
-  GTEST_SKIP() << "allocation counting needs glibc and no sanitizer (which interposes malloc)";
-#else
+  OT_SKIP_UNLESS_COUNTING_ALLOCATIONS();
   const Clip& c = clip();
   ASSERT_EQ(c.boxes.size(), 3u) << "the first frame of 'multi' should show three targets";
-  // The counter sees allocations made inside OpenCV (so a small count below means something).
-  g_allocations = 0;
-  g_counting = true;
-  { cv::Mat probe(64, 64, CV_32F); }
-  g_counting = false;
-  ASSERT_GT(g_allocations.load(), 0);
+  ASSERT_GT(probeOpenCvAllocations(), 0);  // so that a zero below means something
 
   oc::Params p;
   p.max_obstacles = 3;
@@ -109,13 +102,10 @@ TEST(PipelineMemory, ThreeTracksNoHeapAllocationPerFrame) {
   EXPECT_EQ(total, 0) << "largest allocation " << largest << " bytes, at most " << most << " in a frame";
   std::cout << "[          ] " << total << " allocation(s) in " << counted
             << " frames with three tracks (largest " << largest << " bytes)\n";
-#endif
 }
 
 TEST(PipelineMemory, GrowingObjectNoHeapAllocationPerFrame) {
-#ifndef OT_COUNT_ALLOCATIONS
-  GTEST_SKIP() << "allocation counting needs glibc and no sanitizer (which interposes malloc)";
-#else
+  OT_SKIP_UNLESS_COUNTING_ALLOCATIONS();
   // An aircraft closing on the camera, 1280x720: its box grows from frame to frame, so every
   // buffer that depends on a box size (the looming estimator's patches, a large box's
   // box-filtered frame rows) is asked for a new size. Rendered before the pipeline exists.
@@ -144,7 +134,6 @@ TEST(PipelineMemory, GrowingObjectNoHeapAllocationPerFrame) {
     largest = std::max(largest, g_largest.load());
   }
   EXPECT_EQ(total, 0) << "largest allocation " << largest << " bytes";
-#endif
 }
 
 TEST(PipelineMemory, ThreeTracksCoreHeapUnder30MiB) {

@@ -127,9 +127,7 @@ TEST(RegionLabels, SameComponentsAndStatisticsAsOpenCv) {
 }
 
 TEST(RegionLabels, NoHeapAllocationAfterTheLargestMap) {
-#ifndef OT_COUNT_ALLOCATIONS
-  GTEST_SKIP() << "allocation counting needs glibc and no sanitizer (which interposes malloc)";
-#else
+  OT_SKIP_UNLESS_COUNTING_ALLOCATIONS();
   cv::RNG rng(5);
   oc::RegionExtractor ex;
   oc::Params p;
@@ -153,5 +151,4 @@ TEST(RegionLabels, NoHeapAllocationAfterTheLargestMap) {
   for (const auto& m : maps) ex.extract(m, g, p, regions);
   g_counting = false;
   EXPECT_EQ(g_allocations.load(), 0);
-#endif
 }

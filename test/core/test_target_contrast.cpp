@@ -96,9 +96,7 @@ TEST(TargetContrast, ANearObstacleAt1080pIsMeasuredOnSampledGrids) {
 }
 
 TEST(TargetContrast, NoHeapAllocation) {
-#ifndef OT_COUNT_ALLOCATIONS
-  GTEST_SKIP() << "allocation counting needs glibc and no sanitizer (alloc_counter.h)";
-#else
+  OT_SKIP_UNLESS_COUNTING_ALLOCATIONS();
   const cv::Mat frame = skyFrame(cv::Size(1920, 1080), 140.0, 3.0);
   cv::Mat colour;
   cv::cvtColor(frame, colour, cv::COLOR_GRAY2BGR);
@@ -112,7 +110,6 @@ TEST(TargetContrast, NoHeapAllocation) {
   g_counting = false;
   EXPECT_EQ(g_allocations.load(), 0);
   EXPECT_TRUE(std::isfinite(sum));
-#endif
 }
 
 TEST(TargetContrast, LostOnlyWhenNothingStandsOutOfAnObjectThatDidAtItsStart) {
