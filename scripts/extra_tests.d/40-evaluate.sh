@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
 #
-# The evaluation tool end to end (issue 5): on two generated scenes (one where the target leaves
+# The evaluation tool end to end: on two generated scenes (one where the target leaves
 # the frame) `evaluate` runs our pipeline and two OpenCV trackers with TRE in 2 jobs and must
 # write every output; then score_boxes, reading evaluate's box files back, must reproduce each OPE
 # row of results.csv (frames, frames with ground truth, P@20, AUC, centre error: the box files
