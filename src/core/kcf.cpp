@@ -184,6 +184,13 @@ KcfResult KcfTracker::update(const cv::Mat& frame) {
   return trackStep(*impl_, frame, true);
 }
 
+void KcfTracker::shiftSearch(const cv::Point2f& offset) {
+  checkImpl(impl_);
+  if (!impl_->initialized) throw std::logic_error("KcfTracker::shiftSearch: not initialised");
+  if (!std::isfinite(offset.x) || !std::isfinite(offset.y)) return;
+  impl_->center += offset;  // kept on the frame by the next step (trackStep clamps the centre)
+}
+
 KcfResult KcfTracker::detect(const cv::Mat& frame) {
   checkImpl(impl_);
   requireFrame(frame, "KcfTracker::detect");

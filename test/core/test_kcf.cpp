@@ -217,6 +217,32 @@ TEST(Kcf, EvaluateDoesNotChangeStateAndRanksCandidates) {
   EXPECT_EQ(ra.peak, rb.peak);
 }
 
+TEST(Kcf, ShiftedSearchFindsATargetBeyondTheWindow) {
+  // The target jumps two box sides between two frames (frames dropped in between): around its
+  // old box the filter cannot see it; searching around the caller's prediction finds it.
+  const cv::Mat bg = makeTexture(160, 21);
+  const cv::Mat obj = makeTexture(64, 22);
+  const cv::Size fs(320, 240);
+  const cv::Mat f0 = renderFrame(bg, obj, fs, 100, 120, 30, CV_8UC3);
+  const cv::Mat f1 = renderFrame(bg, obj, fs, 160, 120, 30, CV_8UC3);
+  const cv::Rect2f box(85, 105, 30, 30);
+  oc::KcfTracker plain, shifted;
+  EXPECT_THROW(shifted.shiftSearch(cv::Point2f(1.0f, 0.0f)), std::logic_error);
+  plain.init(f0, box);
+  shifted.init(f0, box);
+  shifted.shiftSearch(cv::Point2f(std::nanf(""), 0.0f));  // ignored
+  EXPECT_EQ(shifted.box(), plain.box());
+  shifted.shiftSearch(cv::Point2f(56.0f, 3.0f));  // a prediction a few pixels off
+  EXPECT_NEAR(centre(shifted.box()).x, 156.0, 1e-3);
+  const oc::KcfResult rp = plain.update(f1);
+  const oc::KcfResult rs = shifted.update(f1);
+  EXPECT_GT(std::abs(centre(rp.box).x - 160.0), 10.0) << "the jump should be beyond the unshifted search";
+  EXPECT_NEAR(centre(rs.box).x, 160.0, 1.0);
+  EXPECT_NEAR(centre(rs.box).y, 120.0, 1.0);
+  EXPECT_GT(rs.confidence, 0.6);
+  EXPECT_GT(rs.peak, rp.peak);
+}
+
 TEST(Kcf, DetectThenLearnEqualsUpdate) {
   const cv::Mat bg = makeTexture(160, 14);
   const cv::Mat obj = makeTexture(64, 15);

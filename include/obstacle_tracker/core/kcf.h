@@ -63,6 +63,11 @@ class KcfTracker {
   // Detects in frame around the current box, then learns when confidence >= learn_threshold.
   KcfResult update(const cv::Mat& frame);
 
+  // Moves the current box (the next detection's search centre) by offset px without touching
+  // the model: the caller's motion prediction, e.g. over frames it never saw. Throws
+  // std::logic_error before init; an offset that is not finite is ignored.
+  void shiftSearch(const cv::Point2f& offset);
+
   // Correlates the current model at a candidate box without changing any state (to verify a
   // re-detection candidate against the model). The window is the model's, centred on the
   // candidate and scaled by sqrt(candidate area / current box area) (the model's aspect is kept);
