@@ -9,7 +9,8 @@
 //
 // Per track, per frame:
 //   tracking     KcfTracker::update. peak >= peak_threshold: the new box is kept. Otherwise the
-//                track re-detects in the same frame.
+//                track re-detects in the same frame. After dropped frames the search may start
+//                at the constant-velocity prediction instead (bridgeDroppedFrames).
 //   re-detecting the filter's own answer (update without learning) counts when its peak passes the
 //                re-detection test; otherwise the candidates are the salient
 //                regions inside search_window_scale x the box around the prediction (constant
@@ -47,6 +48,7 @@
 #include <vector>
 
 #include "obstacle_tracker/core/box_geometry.h"
+#include "obstacle_tracker/core/frame_interval.h"
 #include "obstacle_tracker/core/kcf.h"
 #include "obstacle_tracker/core/looming.h"
 #include "obstacle_tracker/core/pipeline.h"
@@ -187,6 +189,7 @@ struct Pipeline::Impl {
   int next_id = 0;
   long frame_index = 0;
   double last_stamp = -std::numeric_limits<double>::infinity();
+  FrameInterval intervals;  // the usual frame interval, and the frames dropped before this one
   cv::Size frame_size;
   bool autoinit_fresh = true;
   // pipeline.cpp
@@ -213,6 +216,7 @@ struct Pipeline::Impl {
   static void updateRefs(Track& t, const KcfResult& r);
   float inFrameFraction(const cv::Rect2f& b) const;
   void step(Track& t, const cv::Mat& frame, double stamp);
+  void bridgeDroppedFrames(Track& t, const cv::Mat& frame);
 
   // pipeline_search.cpp
   bool overlapsTrack(const cv::Rect2f& b, float max_iou) const;

@@ -230,8 +230,33 @@ float Pipeline::Impl::inFrameFraction(const cv::Rect2f& b) const {
   return b.area() > 0.0f ? (b & f).area() / b.area() : 0.0f;
 }
 
+// Frames dropped before this one (a camera driver or a nodelet queue behind a busy tracker):
+// the filter searches around its last box, and a target that kept moving through the missing
+// frames may have left the part of the window the filter answers well (the cosine window, and
+// the background the model learned around the target, pull the peak back). The track's velocity
+// over the time beyond one usual interval (capped as the re-detection's prediction is) gives a
+// second search centre; the model is correlated at both (KcfTracker::evaluate, no state change)
+// and the search starts at the one that answers better. Constant velocity alone is a poor guess
+// under a moving camera (the image velocity of a small target is mostly the camera's jitter),
+// hence the comparison. At the usual frame rate nothing is evaluated or moved.
+void Pipeline::Impl::bridgeDroppedFrames(Track& t, const cv::Mat& frame) {
+  const double missed = intervals.dropped();
+  if (!(missed > 0.0) || !t.motion.have_velocity || t.state != TrackState::kTracking) return;
+  cv::Point2f shift = t.motion.velocity * static_cast<float>(missed);
+  const cv::Rect2f box = t.kcf.box();
+  const float cap = kMaxPredictionBoxes * std::max(box.width, box.height);
+  const float n = std::hypot(shift.x, shift.y);
+  if (!std::isfinite(n) || n < 1.0f) return;  // under a pixel: nothing to bridge
+  if (n > cap) shift *= cap / n;
+  const cv::Rect2f moved = clampCentre(boxCentredAt(boxCentre(box) + shift, box.size()), frame_size);
+  if (!usableBox(moved, frame_size) || !usableBox(box, frame_size)) return;
+  if (t.kcf.evaluate(frame, moved).peak <= t.kcf.evaluate(frame, box).peak) return;
+  t.kcf.shiftSearch(boxCentre(moved) - boxCentre(box));
+}
+
 void Pipeline::Impl::step(Track& t, const cv::Mat& frame, double stamp) {
   ++t.age;
+  bridgeDroppedFrames(t, frame);
   // The filter first, in both states (re-detecting: without learning).
   configureFilter(t, t.state == TrackState::kTracking);
   const KcfResult r = t.kcf.update(frame);

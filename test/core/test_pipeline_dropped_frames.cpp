@@ -1,0 +1,73 @@
+// Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
+//
+// The closed loop when frames are dropped before they reach it: a nodelet drops the camera's
+// frames while the tracker is busy, so which frames it sees depends on the machine's load. The
+// accuracy over the frames it answers must not depend on which ones those are. Deterministic
+// drop patterns stand in for the load here (the real-time accuracy rostest is the same scene
+// through the nodelet).
+#include <cstdio>
+#include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "obstacle_tracker/core/pipeline.h"
+#include "obstacle_tracker/eval/metrics.h"
+#include "obstacle_tracker/eval/sequence.h"
+#include "obstacle_tracker/scene/scene_generator.h"
+
+namespace core = obstacle_tracker::core;
+namespace eval = obstacle_tracker::eval;
+namespace scene = obstacle_tracker::scene;
+
+namespace {
+
+// Auto-initialised run over a generated scene, each frame after the first dropped with
+// probability drop_tenths / 10 (std::mt19937's output is the same on every platform; a
+// distribution's is not). Scores over the answered frames, as the accuracy rostest does.
+eval::OtbScores runWithDrops(const char* scenario, unsigned drop_seed, unsigned drop_tenths) {
+  scene::SceneGenerator gen = scene::makeScenario(scenario, 3, 150, cv::Size(480, 360), false);
+  core::Pipeline pipeline;
+  eval::FrameConverter converter;
+  std::mt19937 rng(drop_seed);
+  std::vector<cv::Rect2f> predicted, truth;
+  cv::Mat raw;
+  for (int i = 0; i < gen.frameCount(); ++i) {
+    scene::FrameTruth frame_truth;
+    gen.renderFrame(i, raw, &frame_truth);
+    if (i > 0 && rng() % 10 < drop_tenths) continue;
+    const scene::ObstacleTruth* main = frame_truth.find(1);
+    const std::vector<core::Obstacle>& out = pipeline.process(converter.convert(raw), i / gen.fps());
+    cv::Rect2f best;
+    for (const core::Obstacle& o : out) {
+      if (o.state == core::TrackState::kTracking || o.state == core::TrackState::kRedetecting) {
+        best = o.box;
+        break;
+      }
+    }
+    predicted.push_back(best);
+    truth.push_back(main != nullptr && main->visible ? main->box : cv::Rect2f());
+  }
+  return eval::otbScores(predicted, truth);
+}
+
+}  // namespace
+
+TEST(PipelineDroppedFrames, FastBirdIsKeptWhateverFramesAreDropped) {
+  // The bird moves up to 3 box widths a second with a wavy path: after a few dropped frames it
+  // has left the filter's window unless the search follows its velocity over the missing time
+  // (Pipeline: bridgeDroppedFrames). Measured: 7 of 8 drop patterns keep P@20 >= 0.80 (mean
+  // 0.85); without the bridge 3 of 8. The one that fails loses the bird after a turn.
+  constexpr int kPatterns = 8;
+  int kept = 0;
+  double mean = 0.0;
+  for (unsigned seed = 1; seed <= kPatterns; ++seed) {
+    const eval::OtbScores s = runWithDrops("bird", seed, 3);
+    std::printf("[ dropped  ] bird, 30 %% of frames dropped (pattern %u): P@20 %.3f AUC %.3f over %d frames\n",
+                seed, s.precision20, s.auc, s.frames);
+    kept += s.precision20 >= 0.80 ? 1 : 0;
+    mean += s.precision20 / kPatterns;
+  }
+  EXPECT_GE(kept, 6) << "drop patterns with P@20 >= 0.80";
+  EXPECT_GE(mean, 0.75);
+}
