@@ -34,9 +34,7 @@ ObstacleTrackerNodelet::~ObstacleTrackerNodelet() {
   // Stop the inputs, then the processing thread, before the members they use go away.
   diagnostics_timer_.stop();
   image_sub_.shutdown();
-  sync_.reset();
-  info_filter_.reset();
-  image_filter_.reset();
+  camera_sub_.shutdown();
   slot_.stop();
   if (worker_.joinable()) worker_.join();
 }
@@ -116,7 +114,6 @@ void ObstacleTrackerNodelet::onInit() {
       diagnostic_updater::FrequencyStatusParam(&min_obstacles_rate_, &max_obstacles_rate_, 0.0, 10),
       diagnostic_updater::TimeStampStatusParam(0.0, kMaxStampDelay)));
   window_start_ = ros::WallTime::now();
-  diagnostics_timer_ = pnh.createWallTimer(ros::WallDuration(0.25), &ObstacleTrackerNodelet::diagnosticsTimer, this);
 
   worker_ = std::thread(&ObstacleTrackerNodelet::processFrames, this);
   it_.reset(new image_transport::ImageTransport(nh));
@@ -127,23 +124,39 @@ void ObstacleTrackerNodelet::onInit() {
   // image then never pairs) once `queue` newer ones wait: the same depth as the slot's idle
   // backlog, so that any frame dropped without an earlier one in processing had that many newer
   // frames behind it (the delivery rule the rostests check, test/ros/frame_delivery.h).
+  // CameraSubscriber uses the depth for the image and camera_info subscriptions and for its
+  // exact-time pairing alike.
   const std::uint32_t queue = bridge::FrameSlot<PendingFrame>::kIdleBacklog;
   if (use_camera_info_) {
-    image_filter_.reset(new image_transport::SubscriberFilter(*it_, "image", queue, hints));
-    image_filter_->registerCallback(boost::bind(&ObstacleTrackerNodelet::countInput, this, boost::placeholders::_1));
-    info_filter_.reset(new message_filters::Subscriber<sensor_msgs::CameraInfo>(nh, "camera_info", queue));
-    sync_.reset(new message_filters::Synchronizer<SyncPolicy>(SyncPolicy(4), *image_filter_, *info_filter_));
-    sync_->registerCallback(boost::bind(&ObstacleTrackerNodelet::imageInfoCallback, this,
-                                        boost::placeholders::_1, boost::placeholders::_2));
-    NODELET_INFO("tracking %s (transport '%s') with camera_info %s; publishing %s",
-                 nh.resolveName("image").c_str(), hints.getTransport().c_str(),
-                 nh.resolveName("camera_info").c_str(), obstacles_pub_.getTopic().c_str());
+    subscribeCamera(queue, hints);
   } else {
     image_sub_ = it_->subscribe("image", queue, &ObstacleTrackerNodelet::imageCallback, this, hints);
+    image_topic_ = image_sub_.getTopic();
     NODELET_INFO("tracking %s (transport '%s'), no camera_info (no bearings); publishing %s",
-                 nh.resolveName("image").c_str(), hints.getTransport().c_str(),
-                 obstacles_pub_.getTopic().c_str());
+                 image_topic_.c_str(), hints.getTransport().c_str(), obstacles_pub_.getTopic().c_str());
   }
+  // Last: diagnose() reads the subscriptions.
+  diagnostics_timer_ = pnh.createWallTimer(ros::WallDuration(0.25), &ObstacleTrackerNodelet::diagnosticsTimer, this);
+}
+
+void ObstacleTrackerNodelet::subscribeCamera(std::uint32_t queue, const image_transport::TransportHints& hints) {
+  ros::NodeHandle& nh = getNodeHandle();
+  // image_transport pairs the image with the camera_info of the same stamp on the image topic's
+  // sibling, and itself warns (every 10 s, logger ros.image_transport.sync) when the two topics
+  // do not appear to be synchronised.
+  camera_sub_ = it_->subscribeCamera("image", queue, &ObstacleTrackerNodelet::imageInfoCallback, this, hints);
+  image_topic_ = camera_sub_.getTopic();
+  info_topic_ = camera_sub_.getInfoTopic();
+  // A remapping of camera_info alone no longer reaches the subscription: say so rather than wait
+  // for pairs that never come.
+  const std::string remapped = nh.resolveName("camera_info");
+  if (remapped != nh.resolveName("camera_info", false) && remapped != info_topic_) {
+    NODELET_WARN("camera_info is remapped to %s, but image_transport reads it from %s, next to the "
+                 "image topic: remap %s instead",
+                 remapped.c_str(), info_topic_.c_str(), info_topic_.c_str());
+  }
+  NODELET_INFO("tracking %s (transport '%s') with camera_info %s; publishing %s", image_topic_.c_str(),
+               hints.getTransport().c_str(), info_topic_.c_str(), obstacles_pub_.getTopic().c_str());
 }
 
 void ObstacleTrackerNodelet::countInput(const sensor_msgs::ImageConstPtr& image) {
@@ -153,18 +166,14 @@ void ObstacleTrackerNodelet::countInput(const sensor_msgs::ImageConstPtr& image)
     ++total_.received;
     const std::uint32_t seq = image->header.seq;
     // A gap in the sequence numbers: frames lost before the callback (transport, a full
-    // subscription queue). Sequences that restart (bag loop) are not gaps.
+    // subscription queue; with ~use_camera_info also an image that found no camera_info of its
+    // stamp). Sequences that restart (bag loop) are not gaps.
     if (have_input_seq_ && seq > last_input_seq_ + 1 && seq - last_input_seq_ < 1000000) {
       window_.dropped += seq - last_input_seq_ - 1;
       total_.dropped += seq - last_input_seq_ - 1;
     }
     have_input_seq_ = true;
     last_input_seq_ = seq;
-    if (use_camera_info_ && ++unsynced_since_pair_ == 30) {
-      NODELET_WARN("30 images without a camera_info of the same stamp on %s: is the camera publishing "
-                   "it? (set use_camera_info to false to track without bearings)",
-                   getNodeHandle().resolveName("camera_info").c_str());
-    }
   } catch (...) {
   }
 }
@@ -183,10 +192,7 @@ void ObstacleTrackerNodelet::imageCallback(const sensor_msgs::ImageConstPtr& ima
 void ObstacleTrackerNodelet::imageInfoCallback(const sensor_msgs::ImageConstPtr& image,
                                                const sensor_msgs::CameraInfoConstPtr& info) {
   try {
-    {
-      std::lock_guard<std::mutex> lock(stats_mutex_);
-      unsynced_since_pair_ = 0;
-    }
+    countInput(image);
     slot_.offer({image, info});
   } catch (const std::exception& e) {
     NODELET_ERROR_THROTTLE(5.0, "image + camera_info callback: %s", e.what());
