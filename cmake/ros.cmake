@@ -16,7 +16,7 @@ add_library(obstacle_tracker_nodelet ${OT_ROS_SOURCES})
 target_include_directories(obstacle_tracker_nodelet PUBLIC
   $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/include> $<BUILD_INTERFACE:${OT_GENERATED_INCLUDE_DIR}>)
 target_include_directories(obstacle_tracker_nodelet SYSTEM PUBLIC ${catkin_INCLUDE_DIRS})
-target_link_libraries(obstacle_tracker_nodelet PUBLIC obstacle_tracker_core ${catkin_LIBRARIES} opencv_calib3d)
+target_link_libraries(obstacle_tracker_nodelet PUBLIC obstacle_tracker_core ${catkin_LIBRARIES})
 # Generated message headers and ObstacleTrackerConfig.h must exist before the sources compile.
 add_dependencies(obstacle_tracker_nodelet ${PROJECT_NAME}_generate_messages_cpp ${PROJECT_NAME}_gencfg)
 set_target_properties(obstacle_tracker_nodelet PROPERTIES

@@ -24,8 +24,8 @@ PACKAGES=(
   libroscpp-dev libstd-msgs-dev libsensor-msgs-dev libgeometry-msgs-dev
   libnodeletlib-dev libnodeletlib-tools
   libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure
-  libcv-bridge-dev libimage-transport-dev libopencv-contrib-dev
-  libtf2-ros-dev libtf2-eigen-dev tf2-tools libdiagnostic-updater-dev libmessage-filters-dev libvisualization-msgs-dev
+  libcv-bridge-dev libimage-transport-dev libimage-geometry-dev libopencv-contrib-dev
+  libtf2-ros-dev libtf2-eigen-dev tf2-tools libdiagnostic-updater-dev libvisualization-msgs-dev
   librosbag-dev python3-rosbag librostest-dev python3-rostest python3-sensor-msgs
   rosbash python3-rostopic python3-rosnode python3-rosmsg python3-rosparam python3-roslaunch python3-diagnostic-msgs
   python3-numpy python3-matplotlib python3-yaml python3-opencv

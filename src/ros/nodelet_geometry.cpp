@@ -28,6 +28,7 @@ bool sameValues(const Array& a, const Array& b) {
 
 bool sameCalibration(const sensor_msgs::CameraInfo& a, const sensor_msgs::CameraInfo& b) {
   return a.width == b.width && a.height == b.height && sameValues(a.K, b.K) && sameValues(a.D, b.D) &&
+         sameValues(a.R, b.R) && sameValues(a.P, b.P) &&
          a.distortion_model == b.distortion_model && a.binning_x == b.binning_x &&
          a.binning_y == b.binning_y && a.roi.x_offset == b.roi.x_offset &&
          a.roi.y_offset == b.roi.y_offset && a.roi.width == b.roi.width && a.roi.height == b.roi.height;

@@ -35,9 +35,7 @@ ObstacleTrackerNodelet::~ObstacleTrackerNodelet() {
   // Stop the inputs, then the processing thread, before the members they use go away.
   diagnostics_timer_.stop();
   image_sub_.shutdown();
-  sync_.reset();
-  info_filter_.reset();
-  image_filter_.reset();
+  camera_sub_.shutdown();
   slot_.stop();
   if (worker_.joinable()) worker_.join();
 }
@@ -128,83 +126,11 @@ void ObstacleTrackerNodelet::onInit() {
       diagnostic_updater::FrequencyStatusParam(&min_obstacles_rate_, &max_obstacles_rate_, 0.0, 10),
       diagnostic_updater::TimeStampStatusParam(0.0, kMaxStampDelay)));
   window_start_ = ros::WallTime::now();
-  diagnostics_timer_ = pnh.createWallTimer(ros::WallDuration(0.25), &ObstacleTrackerNodelet::diagnosticsTimer, this);
 
   worker_ = std::thread(&ObstacleTrackerNodelet::processFrames, this);
-  it_.reset(new image_transport::ImageTransport(nh));
-  const image_transport::TransportHints hints("raw", ros::TransportHints(), pnh);
-  // The callbacks only hand frames to the slot, so these queues hardly ever hold more than one;
-  // room for a burst, so that the slot (not roscpp) decides what is dropped. When the callback
-  // thread is not scheduled for a while, roscpp drops the oldest frame (or camera_info, whose
-  // image then never pairs) once `queue` newer ones wait: the same depth as the slot's idle
-  // backlog, so that any frame dropped without an earlier one in processing had that many newer
-  // frames behind it (the delivery rule the rostests check, test/ros/frame_delivery.h).
-  const std::uint32_t queue = bridge::FrameSlot<PendingFrame>::kIdleBacklog;
-  if (use_camera_info_) {
-    image_filter_.reset(new image_transport::SubscriberFilter(*it_, "image", queue, hints));
-    image_filter_->registerCallback(boost::bind(&ObstacleTrackerNodelet::countInput, this, boost::placeholders::_1));
-    info_filter_.reset(new message_filters::Subscriber<sensor_msgs::CameraInfo>(nh, "camera_info", queue));
-    sync_.reset(new message_filters::Synchronizer<SyncPolicy>(SyncPolicy(4), *image_filter_, *info_filter_));
-    sync_->registerCallback(boost::bind(&ObstacleTrackerNodelet::imageInfoCallback, this,
-                                        boost::placeholders::_1, boost::placeholders::_2));
-    NODELET_INFO("tracking %s (transport '%s') with camera_info %s; publishing %s",
-                 nh.resolveName("image").c_str(), hints.getTransport().c_str(),
-                 nh.resolveName("camera_info").c_str(), obstacles_pub_.getTopic().c_str());
-  } else {
-    image_sub_ = it_->subscribe("image", queue, &ObstacleTrackerNodelet::imageCallback, this, hints);
-    NODELET_INFO("tracking %s (transport '%s'), no camera_info (no bearings); publishing %s",
-                 nh.resolveName("image").c_str(), hints.getTransport().c_str(),
-                 obstacles_pub_.getTopic().c_str());
-  }
-}
-
-void ObstacleTrackerNodelet::countInput(const sensor_msgs::ImageConstPtr& image) {
-  try {
-    std::lock_guard<std::mutex> lock(stats_mutex_);
-    ++window_.received;
-    ++total_.received;
-    const std::uint32_t seq = image->header.seq;
-    // A gap in the sequence numbers: frames lost before the callback (transport, a full
-    // subscription queue). Sequences that restart (bag loop) are not gaps.
-    if (have_input_seq_ && seq > last_input_seq_ + 1 && seq - last_input_seq_ < 1000000) {
-      window_.dropped += seq - last_input_seq_ - 1;
-      total_.dropped += seq - last_input_seq_ - 1;
-    }
-    have_input_seq_ = true;
-    last_input_seq_ = seq;
-    if (use_camera_info_ && ++unsynced_since_pair_ == 30) {
-      NODELET_WARN("30 images without a camera_info of the same stamp on %s: is the camera publishing "
-                   "it? (set use_camera_info to false to track without bearings)",
-                   getNodeHandle().resolveName("camera_info").c_str());
-    }
-  } catch (...) {
-  }
-}
-
-void ObstacleTrackerNodelet::imageCallback(const sensor_msgs::ImageConstPtr& image) {
-  try {
-    countInput(image);
-    slot_.offer({image, sensor_msgs::CameraInfoConstPtr()});
-  } catch (const std::exception& e) {  // process() catches its own; this guards the locking
-    NODELET_ERROR_THROTTLE(5.0, "image callback: %s", e.what());
-  } catch (...) {
-    NODELET_ERROR_THROTTLE(5.0, "image callback: unknown error");
-  }
-}
-
-void ObstacleTrackerNodelet::imageInfoCallback(const sensor_msgs::ImageConstPtr& image,
-                                               const sensor_msgs::CameraInfoConstPtr& info) {
-  try {
-    {
-      std::lock_guard<std::mutex> lock(stats_mutex_);
-      unsynced_since_pair_ = 0;
-    }
-    slot_.offer({image, info});
-  } catch (const std::exception& e) {
-    NODELET_ERROR_THROTTLE(5.0, "image + camera_info callback: %s", e.what());
-  } catch (...) {
-    NODELET_ERROR_THROTTLE(5.0, "image + camera_info callback: unknown error");
-  }
+  subscribe();
+  // Last: diagnose() reads the subscriptions.
+  diagnostics_timer_ = pnh.createWallTimer(ros::WallDuration(0.25), &ObstacleTrackerNodelet::diagnosticsTimer, this);
 }
 
 void ObstacleTrackerNodelet::processFrames() {

@@ -72,9 +72,10 @@ class Harness {
     return false;
   }
 
-  // Publishes one frame (camera_info first, so the synchroniser can match at once).
+  // Publishes one frame (camera_info first, so the synchroniser can match at once; none when
+  // with_info is false).
   sensor_msgs::Image publish(int i, const std::string& encoding_override = std::string(),
-                             bool truncate = false) {
+                             bool truncate = false, bool with_info = true) {
     ++published_;
     sensor_msgs::Image image = ot::testing::toImageMsg(ot::testing::skyFrame(i), "camera_optical",
                                                        base_stamp_ + 0.1 * published_, published_);
@@ -86,7 +87,7 @@ class Harness {
       }
     }
     if (truncate) image.data.resize(image.data.size() / 2);
-    if (use_info_) info_pub_.publish(ot::testing::cameraInfo(image));
+    if (use_info_ && with_info) info_pub_.publish(ot::testing::cameraInfo(image));
     image_pub_.publish(image);
     return image;
   }
@@ -255,6 +256,30 @@ TEST(Tracker, OneArrayPerImageWithItsHeader) {
   // The disc is plain to see: the tracker must report it in most frames after the first few.
   EXPECT_GE(with_obstacles, sent.size() / 2) << "the disc was reported in " << with_obstacles << " of "
                                              << sent.size() << " frames";
+}
+
+TEST(Tracker, ImagesWithoutCameraInfoAreNotAnsweredAndDiagnosed) {
+  Harness& h = *harness;
+  if (!h.use_info_) GTEST_SKIP() << "needs ~use_camera_info";
+  ASSERT_TRUE(h.waitConnected(30.0));
+  // Images alone for a few diagnostics periods: only pairs reach the tracker.
+  std::vector<ros::Time> alone;
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(3.0);
+  while (ros::ok() && ros::WallTime::now() < end) {
+    alone.push_back(h.publish(static_cast<int>(alone.size()), std::string(), false, false).header.stamp);
+    ros::WallDuration(0.05).sleep();
+  }
+  const std::string expected = "no image + camera_info pairs received";
+  std::string message;
+  EXPECT_TRUE(h.waitFor([&] {
+    message = h.last_diagnostics_.message;
+    return message.find(expected) != std::string::npos;
+  }, 10.0)) << "diagnostics say '" << message << "'";
+  // Pairs again: answered, and none of the lone images was.
+  const sensor_msgs::Image paired = h.publish(0);
+  EXPECT_TRUE(h.waitOutputFor(paired.header.stamp, 20.0)) << "no output once camera_info is back";
+  std::lock_guard<std::mutex> lock(h.mutex_);
+  for (const ros::Time& t : alone) EXPECT_EQ(h.outputCountFor(t), 0u) << "an image without camera_info was answered";
 }
 
 TEST(Tracker, DynamicReconfigureIsApplied) {

@@ -1,17 +1,21 @@
 // Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
 //
-// Bearings and angular sizes of boxes from a sensor_msgs/CameraInfo (pinhole K, optional
-// distortion D). The image is taken to be the one the camera_info describes: with a non-zero D
-// (plumb_bob, rational_polynomial, equidistant) the pixel is undistorted first; for a rectified
-// image publish a camera_info with D = 0 (or all-zero D). binning and roi are honoured.
+// Bearings and angular sizes of boxes from a sensor_msgs/CameraInfo, through image_geometry's
+// PinholeCameraModel: the pixel is rectified with K, D, R and P (rectifyPoint; plumb_bob,
+// rational_polynomial and equidistant), then turned into a ray with P. binning and roi are
+// honoured (image_geometry adjusts K and P to the reduced image). The image is taken to be the one
+// the camera_info describes; for an image that is already rectified publish D = 0 (or empty):
+// image_geometry then leaves the pixel as it is and projects with P. A skew in K or P (K[1]) is
+// ignored, as image_geometry and OpenCV's undistortion ignore it (camera_calibration writes none).
 //
-// Conventions: the camera's optical frame (REP 103: z forward, x right, y down). The box from the
-// core is in "corner" pixel coordinates (pixel i covers [i, i+1)); K uses pixel centres, so the
-// point (u, v) of the box is looked up at (u - 0.5, v - 0.5).
+// Conventions: the camera's optical frame (REP 103: z forward, x right, y down); with a stereo
+// rectification R, the rectified frame. The box from the core is in "corner" pixel coordinates
+// (pixel i covers [i, i+1)); K and P use pixel centres.
 #pragma once
 
 #include <string>
 
+#include <image_geometry/pinhole_camera_model.h>
 #include <opencv2/core.hpp>
 #include <sensor_msgs/CameraInfo.h>
 
@@ -29,7 +33,8 @@ class CameraGeometry {
   CameraGeometry() = default;
 
   // False (with a reason in *error) for a camera_info that cannot be used: zero or non-finite
-  // focal lengths, an unknown distortion model with non-zero D, a D of the wrong length.
+  // focal lengths in K or P, an unknown distortion model with non-zero D, a D of the wrong
+  // length, an R that is not a rotation.
   bool setCameraInfo(const sensor_msgs::CameraInfo& info, std::string* error);
   bool valid() const { return valid_; }
 
@@ -40,15 +45,12 @@ class CameraGeometry {
   BoxGeometry box(const cv::Rect2f& box) const;
 
  private:
-  enum class Model { kPinhole, kPlumbBob, kEquidistant };
   bool valid_ = false;
-  Model model_ = Model::kPinhole;
-  cv::Matx33d K_ = cv::Matx33d::eye();
-  cv::Mat D_;
-  double binning_x_ = 1.0;
-  double binning_y_ = 1.0;
-  double roi_x_ = 0.0;
-  double roi_y_ = 0.0;
+  image_geometry::PinholeCameraModel model_;
+  // P of the reduced image without its stereo baseline column (see ray()).
+  cv::Matx34d projection_;
+  double half_pixel_x_ = 0.5;  // corner -> pixel-centre offset in reduced pixels
+  double half_pixel_y_ = 0.5;
 };
 
 }  // namespace bridge

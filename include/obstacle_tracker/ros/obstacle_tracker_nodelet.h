@@ -2,7 +2,8 @@
 //
 // obstacle_tracker/ObstacleTrackerNodelet: the thin ROS adapter around core::Pipeline.
 //   subscribes  image (image_transport, ~image_transport picks the transport)
-//               camera_info (only with ~use_camera_info; exact-time synchronised with image)
+//               camera_info (only with ~use_camera_info): image_transport's CameraSubscriber,
+//               the image topic's sibling, paired with the image of the same stamp
 //               The callbacks hand each frame to one processing thread through a FrameSlot
 //               (frame_slot.h): a frame is dropped only for a newer one while an earlier frame
 //               is being processed.
@@ -30,10 +31,6 @@
 #include <diagnostic_updater/publisher.h>
 #include <dynamic_reconfigure/server.h>
 #include <image_transport/image_transport.h>
-#include <image_transport/subscriber_filter.h>
-#include <message_filters/subscriber.h>
-#include <message_filters/sync_policies/exact_time.h>
-#include <message_filters/synchronizer.h>
 #include <nodelet/nodelet.h>
 #include <ros/ros.h>
 #include <sensor_msgs/CameraInfo.h>
@@ -58,13 +55,14 @@ class ObstacleTrackerNodelet : public nodelet::Nodelet {
   ~ObstacleTrackerNodelet() override;
 
  private:
-  using SyncPolicy = message_filters::sync_policies::ExactTime<sensor_msgs::Image, sensor_msgs::CameraInfo>;
-
   void onInit() override;
   void loadParams();
+  // The input side (nodelet_input.cpp): the image alone, or paired with its camera_info.
+  void subscribe();
+  void subscribeCamera(std::uint32_t queue, const image_transport::TransportHints& hints);
   void imageCallback(const sensor_msgs::ImageConstPtr& image);
   void imageInfoCallback(const sensor_msgs::ImageConstPtr& image, const sensor_msgs::CameraInfoConstPtr& info);
-  void countInput(const sensor_msgs::ImageConstPtr& image);
+  void countInput(const sensor_msgs::ImageConstPtr& image);  // an image, or an image + camera_info pair
   void processFrames();
   void prepareFor(const cv::Mat& frame);  // under pipeline_mutex_
   // One frame: refused, or tracked, answered and counted (every exception caught here).
@@ -109,10 +107,9 @@ class ObstacleTrackerNodelet : public nodelet::Nodelet {
 
   // ROS interface.
   std::unique_ptr<image_transport::ImageTransport> it_;
-  image_transport::Subscriber image_sub_;
-  std::unique_ptr<image_transport::SubscriberFilter> image_filter_;
-  std::unique_ptr<message_filters::Subscriber<sensor_msgs::CameraInfo>> info_filter_;
-  std::unique_ptr<message_filters::Synchronizer<SyncPolicy>> sync_;
+  image_transport::Subscriber image_sub_;         // without ~use_camera_info
+  image_transport::CameraSubscriber camera_sub_;  // with it
+  std::string image_topic_, info_topic_;          // as subscribed (diagnostics)
   ros::Publisher obstacles_pub_;
   image_transport::Publisher debug_pub_;
   ros::Publisher markers_pub_;
@@ -148,7 +145,7 @@ class ObstacleTrackerNodelet : public nodelet::Nodelet {
 
   // Statistics for diagnostics (guarded by stats_mutex_).
   struct Window {
-    std::uint64_t received = 0;
+    std::uint64_t received = 0;  // images; with ~use_camera_info, image + camera_info pairs
     std::uint64_t processed = 0;
     std::uint64_t dropped = 0;
     std::uint64_t rejected = 0;
@@ -162,7 +159,6 @@ class ObstacleTrackerNodelet : public nodelet::Nodelet {
   std::uint32_t last_input_seq_ = 0;
   std::uint64_t slot_drops_counted_ = 0;  // slot_.dropped() already added to the windows
   std::uint64_t duplicates_ = 0;
-  std::uint64_t unsynced_since_pair_ = 0;
   std::size_t last_obstacle_count_ = 0;
   core::TrackState last_state_ = core::TrackState::kSearching;
   std::string last_error_;
