@@ -13,7 +13,7 @@ constexpr double kDroppedFrom = 1.5;
 }  // namespace
 
 void FrameInterval::reset() {
-  count_ = 0;
+  next_ = count_ = 0;
   have_stamp_ = false;
   stamp_ = last_ = usual_ = 0.0;
 }
@@ -25,14 +25,14 @@ void FrameInterval::add(double stamp) {
   stamp_ = stamp;
   have_stamp_ = true;
   if (!(last_ > 0.0)) return;  // the first frame, or a repeated stamp: no interval
-  intervals_[static_cast<std::size_t>(count_ % kWindow)] = last_;
-  ++count_;
-  // Median of the kept intervals (the upper one of an even count): a copy, sorted in place on
-  // the stack.
-  const int n = std::min(count_, kWindow);
+  intervals_[static_cast<std::size_t>(next_)] = last_;
+  next_ = (next_ + 1) % kWindow;
+  count_ = std::min(count_ + 1, kWindow);
+  // Median of the kept intervals (the upper one of an even count), by a partial sort of a copy
+  // on the stack.
   std::array<double, kWindow> sorted = intervals_;
-  std::nth_element(sorted.begin(), sorted.begin() + n / 2, sorted.begin() + n);
-  usual_ = sorted[static_cast<std::size_t>(n / 2)];
+  std::nth_element(sorted.begin(), sorted.begin() + count_ / 2, sorted.begin() + count_);
+  usual_ = sorted[static_cast<std::size_t>(count_ / 2)];
 }
 
 double FrameInterval::dropped() const {

@@ -29,7 +29,7 @@ void Pipeline::Impl::resetAll() {
   autoinit_fresh = true;
   out.clear();
   last_stamp = -std::numeric_limits<double>::infinity();
-  intervals.reset();
+  frame_interval.reset();
   frame_index = 0;
 }
 
@@ -65,7 +65,7 @@ void Pipeline::Impl::beginFrame(const cv::Mat& frame, double stamp, const char* 
   if (stamp < last_stamp || (frame_size.area() > 0 && frame.size() != frame_size)) resetAll();
   frame_size = frame.size();
   last_stamp = stamp;
-  intervals.add(stamp);
+  frame_interval.add(stamp);
   ++frame_index;
   // Tracks reported lost last frame are gone now.
   for (std::size_t i = 0; i < tracks.size();) {

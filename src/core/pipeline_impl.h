@@ -189,7 +189,7 @@ struct Pipeline::Impl {
   int next_id = 0;
   long frame_index = 0;
   double last_stamp = -std::numeric_limits<double>::infinity();
-  FrameInterval intervals;  // the usual frame interval, and the frames dropped before this one
+  FrameInterval frame_interval;  // the usual frame interval, and the frames dropped before this one
   cv::Size frame_size;
   bool autoinit_fresh = true;
   // pipeline.cpp

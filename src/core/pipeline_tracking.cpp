@@ -240,7 +240,7 @@ float Pipeline::Impl::inFrameFraction(const cv::Rect2f& b) const {
 // under a moving camera (the image velocity of a small target is mostly the camera's jitter),
 // hence the comparison. At the usual frame rate nothing is evaluated or moved.
 void Pipeline::Impl::bridgeDroppedFrames(Track& t, const cv::Mat& frame) {
-  const double missed = intervals.dropped();
+  const double missed = frame_interval.dropped();
   if (!(missed > 0.0) || !t.motion.have_velocity || t.state != TrackState::kTracking) return;
   cv::Point2f shift = t.motion.velocity * static_cast<float>(missed);
   const cv::Rect2f box = t.kcf.box();

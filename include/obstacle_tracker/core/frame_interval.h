@@ -29,7 +29,8 @@ class FrameInterval {
 
  private:
   std::array<double, kWindow> intervals_{};
-  int count_ = 0;
+  int next_ = 0;   // ring position of the next interval
+  int count_ = 0;  // intervals kept, at most kWindow
   bool have_stamp_ = false;
   double stamp_ = 0.0, last_ = 0.0, usual_ = 0.0;
 };
