@@ -30,33 +30,52 @@ Sequence::Sequence(const std::string& path, const std::string& ground_truth_path
     name_ = sequenceFolderName(p);
     fs::path img_dir;
     files_ = listSequenceImages(p, &img_dir);
-    if (files_.empty()) throw std::runtime_error("no image files in '" + path + "'");
     if (gt_file.empty()) gt_file = folderGroundTruthFile(p);
-    kind_ = gt_file.empty() ? Kind::kImageFolder : Kind::kOtbFolder;
-    frame_count_ = static_cast<int>(files_.size());
-    const double f = sequenceFolderFps(p, img_dir);
-    fps_ = f > 0.0 ? f : 30.0;
+    if (files_.empty()) {
+      openFolderVideo(p, &gt_file);
+    } else {
+      kind_ = gt_file.empty() ? Kind::kImageFolder : Kind::kOtbFolder;
+      frame_count_ = static_cast<int>(files_.size());
+      const double f = sequenceFolderFps(p, img_dir);
+      fps_ = f > 0.0 ? f : 30.0;
+    }
   } else if (fs::is_regular_file(p, ec)) {
     if (hasImageExtension(path)) {
       throw std::runtime_error("'" + path +
                                "' is a single image; give the folder that holds the sequence");
     }
-    kind_ = Kind::kVideo;
     name_ = p.stem().string();
-    video_ = std::make_unique<Video>();
-    if (!video_->cap.open(path) || !video_->cap.isOpened()) {
-      throw std::runtime_error("cannot open video '" + path + "'");
-    }
-    const double f = video_->cap.get(cv::CAP_PROP_FPS);
-    const double scene_fps = videoSceneFps(p);
-    fps_ = (std::isfinite(f) && f > 0.0 && f < 1000.0) ? f : (scene_fps > 0.0 ? scene_fps : 30.0);
-    const double n = video_->cap.get(cv::CAP_PROP_FRAME_COUNT);
-    frame_count_ = (std::isfinite(n) && n > 0.0) ? static_cast<int>(n) : 0;
+    openVideo(path);
     if (gt_file.empty()) gt_file = videoGroundTruthFile(p);
   } else {
     throw std::runtime_error("'" + path + "' is neither a folder nor a file");
   }
   if (!gt_file.empty()) ground_truth_ = loadGroundTruth(gt_file);
+}
+
+void Sequence::openFolderVideo(const fs::path& folder, std::string* gt_file) {
+  const std::vector<std::string> videos = listFolderVideos(folder);
+  if (videos.empty()) throw std::runtime_error("no image or video files in '" + path_ + "'");
+  if (videos.size() > 1) {
+    throw std::runtime_error("'" + path_ + "' holds no image and " + std::to_string(videos.size()) +
+                             " videos; give the video to read");
+  }
+  openVideo(videos.front());
+  if (gt_file->empty()) *gt_file = videoGroundTruthFile(videos.front());
+}
+
+void Sequence::openVideo(const std::string& file) {
+  kind_ = Kind::kVideo;
+  video_path_ = file;
+  video_ = std::make_unique<Video>();
+  if (!video_->cap.open(file) || !video_->cap.isOpened()) {
+    throw std::runtime_error("cannot open video '" + file + "'");
+  }
+  const double f = video_->cap.get(cv::CAP_PROP_FPS);
+  const double scene_fps = videoSceneFps(fs::path(file));
+  fps_ = (std::isfinite(f) && f > 0.0 && f < 1000.0) ? f : (scene_fps > 0.0 ? scene_fps : 30.0);
+  const double n = video_->cap.get(cv::CAP_PROP_FRAME_COUNT);
+  frame_count_ = (std::isfinite(n) && n > 0.0) ? static_cast<int>(n) : 0;
 }
 
 Sequence::~Sequence() = default;
@@ -91,7 +110,9 @@ void Sequence::seek(int index) {
   }
   if (index < position_) {
     video_->cap.release();
-    if (!video_->cap.open(path_)) throw std::runtime_error("cannot re-open video '" + path_ + "'");
+    if (!video_->cap.open(video_path_)) {
+      throw std::runtime_error("cannot re-open video '" + video_path_ + "'");
+    }
     position_ = 0;
   }
   while (position_ < index) {

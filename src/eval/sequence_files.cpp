@@ -53,13 +53,22 @@ bool naturalLess(const std::string& a, const std::string& b) {
   return a.size() - i < b.size() - j;
 }
 
-std::vector<std::string> listImages(const fs::path& dir) {
+bool hasVideoExtension(const std::string& path) {
+  const std::string ext = lower(fs::path(path).extension().string());
+  static const char* kExt[] = {".mp4", ".avi", ".mkv", ".mov", ".webm", ".m4v", ".mpg", ".mpeg", ".wmv", ".ts"};
+  for (const char* e : kExt) {
+    if (ext == e) return true;
+  }
+  return false;
+}
+
+// The files of dir whose path `wanted` accepts, in natural name order.
+std::vector<std::string> listFiles(const fs::path& dir, bool (*wanted)(const std::string&)) {
   std::vector<std::string> names;
   std::error_code ec;
   for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
     if (!it->is_regular_file(ec)) continue;
-    const std::string p = it->path().string();
-    if (hasImageExtension(p)) names.push_back(it->path().filename().string());
+    if (wanted(it->path().string())) names.push_back(it->path().filename().string());
   }
   std::sort(names.begin(), names.end(), naturalLess);
   std::vector<std::string> files;
@@ -67,6 +76,8 @@ std::vector<std::string> listImages(const fs::path& dir) {
   for (const auto& n : names) files.push_back((dir / n).string());
   return files;
 }
+
+std::vector<std::string> listImages(const fs::path& dir) { return listFiles(dir, hasImageExtension); }
 
 std::string readText(const fs::path& p) {
   std::ifstream in(p);
@@ -80,9 +91,10 @@ double fpsFromFolder(const fs::path& dir) {
     const fs::path p = dir / name;
     std::error_code ec;
     if (!fs::is_regular_file(p, ec)) continue;
-    std::string text = readText(p);
-    if (std::string(name) == "fps.txt") text = "fps " + text;  // a bare number
-    const double fps = parseFpsText(text);
+    const std::string text = readText(p);
+    double fps = parseFpsText(text);
+    // fps.txt may hold a bare number instead of an `fps` entry.
+    if (fps <= 0.0 && std::string(name) == "fps.txt") fps = parseFpsText("fps " + text);
     if (fps > 0.0) return fps;
   }
   return 0.0;
@@ -150,6 +162,10 @@ std::vector<std::string> listSequenceImages(const fs::path& folder, fs::path* im
   }
   *image_folder = folder;
   return listImages(folder);
+}
+
+std::vector<std::string> listFolderVideos(const fs::path& folder) {
+  return listFiles(folder, hasVideoExtension);
 }
 
 double sequenceFolderFps(const fs::path& folder, const fs::path& image_folder) {

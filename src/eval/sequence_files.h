@@ -20,6 +20,11 @@ std::string sequenceFolderName(const std::filesystem::path& folder);
 std::vector<std::string> listSequenceImages(const std::filesystem::path& folder,
                                             std::filesystem::path* image_folder);
 
+// The video files directly in a folder (extension mp4, avi, mkv, mov, webm, m4v, mpg, mpeg, wmv
+// or ts, case-insensitive), in natural name order: a sequence folder may hold its frames as one
+// video instead of images.
+std::vector<std::string> listFolderVideos(const std::filesystem::path& folder);
+
 // The frame rate a scene or fps file in the folder gives, else one in image_folder; 0 when none.
 double sequenceFolderFps(const std::filesystem::path& folder,
                          const std::filesystem::path& image_folder);

@@ -267,6 +267,17 @@ TEST(SequenceFolder, PlainImageFolderDefaultsTo30Fps) {
   fs::remove_all(dir);
 }
 
+// fps.txt holds either a bare number or an `fps` entry like scene.yaml's.
+TEST(SequenceFolder, FpsFileWithABareNumberOrAnEntry) {
+  const fs::path dir = tempDir("fps_file");
+  ASSERT_TRUE(cv::imwrite((dir / "0.png").string(), cv::Mat(8, 8, CV_8UC1, cv::Scalar(50))));
+  std::ofstream(dir / "fps.txt") << "12.5\n";
+  EXPECT_DOUBLE_EQ(Sequence(dir.string()).fps(), 12.5);
+  std::ofstream(dir / "fps.txt") << "fps: 25\n";
+  EXPECT_DOUBLE_EQ(Sequence(dir.string()).fps(), 25.0);
+  fs::remove_all(dir);
+}
+
 TEST(SequenceFolder, ErrorsNameThePath) {
   const fs::path dir = tempDir("empty");
   EXPECT_THROW(Sequence s(dir.string()), std::runtime_error);
@@ -301,6 +312,44 @@ TEST(SequenceVideo, ReadsFramesFpsAndGroundTruthNextToIt) {
   seq.seek(3);
   ASSERT_TRUE(seq.read(frame));
   EXPECT_NEAR(frame.at<cv::Vec3b>(10, 10)[0], 120, 12);
+  fs::remove_all(dir);
+}
+
+// A sequence folder may hold its frames as one video (as users record flights) instead of img/.
+TEST(SequenceVideo, FolderHoldingOneVideoReadsItWithTheFolderGroundTruth) {
+  const fs::path dir = tempDir("video_folder");
+  const std::string file = (dir / "video.avi").string();
+  {
+    cv::VideoWriter w(file, cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), 15.0, cv::Size(64, 48));
+    if (!w.isOpened()) GTEST_SKIP() << "no MJPG writer in this OpenCV build";
+    for (int i = 0; i < 5; ++i) w.write(cv::Mat(48, 64, CV_8UC3, cv::Scalar(40 * i, 10, 10)));
+  }
+  std::ofstream(dir / "groundtruth_rect.txt") << "1,2,3,4\n5,6,7,8\n9,10,11,12\n";
+  std::ofstream(dir / "SOURCE.txt") << "not a ground truth";
+  Sequence seq(dir.string());
+  EXPECT_EQ(seq.kind(), Sequence::Kind::kVideo);
+  EXPECT_EQ(seq.name(), dir.filename().string());
+  EXPECT_EQ(seq.videoPath(), file);
+  EXPECT_DOUBLE_EQ(seq.fps(), 15.0);
+  EXPECT_EQ(seq.frameCount(), 5);
+  ASSERT_EQ(seq.groundTruth().size(), 3u);
+  EXPECT_FLOAT_EQ(seq.groundTruthAt(2).x, 9.0f);
+  cv::Mat frame;
+  int n = 0;
+  while (seq.read(frame)) ++n;
+  EXPECT_EQ(n, 5);
+  seq.seek(3);  // back: the video is opened again
+  ASSERT_TRUE(seq.read(frame));
+  EXPECT_NEAR(frame.at<cv::Vec3b>(10, 10)[0], 120, 12);
+
+  // Two videos and no image: which one is meant is not guessed.
+  fs::copy_file(file, dir / "other.avi");
+  try {
+    Sequence two(dir.string());
+    ADD_FAILURE() << "a folder with two videos was read";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("2 videos"), std::string::npos) << e.what();
+  }
   fs::remove_all(dir);
 }
 

@@ -7,6 +7,7 @@
 // write, read back with the ground truth's rules (score_boxes).
 #pragma once
 
+#include <filesystem>
 #include <istream>
 #include <memory>
 #include <string>
@@ -101,10 +102,12 @@ class Sequence {
 
   // path: an OTB folder (an `img/` subfolder of images, or images directly, plus
   // groundtruth_rect.txt / groundtruth.txt), a folder of images (sorted by name, numbers in names
-  // compared as numbers), or a video file. ground_truth_path overrides the ground-truth file;
-  // for a video without it, `<stem>_groundtruth_rect.txt` (generate_scene), `<stem>.txt`,
-  // `<stem>_gt.txt` or `groundtruth_rect.txt` next to the video is used when present. Throws std::runtime_error naming the path when it
-  // cannot be opened, holds no image, or the ground truth cannot be parsed.
+  // compared as numbers), a folder that holds one video instead of images (with the folder's
+  // ground-truth file, else the video's as below), or a video file. ground_truth_path overrides
+  // the ground-truth file; for a video without it, `<stem>_groundtruth_rect.txt` (generate_scene),
+  // `<stem>.txt`, `<stem>_gt.txt` or `groundtruth_rect.txt` next to the video is used when
+  // present. Throws std::runtime_error naming the path when it cannot be opened, holds neither
+  // images nor one video, or the ground truth cannot be parsed.
   explicit Sequence(const std::string& path, const std::string& ground_truth_path = "");
   ~Sequence();
   Sequence(const Sequence&) = delete;
@@ -112,6 +115,8 @@ class Sequence {
 
   Kind kind() const { return kind_; }
   const std::string& path() const { return path_; }
+  // The video file read (for a folder holding a video, the video in it); empty for images.
+  const std::string& videoPath() const { return video_path_; }
   const std::string& name() const { return name_; }  // folder name or video stem
 
   // Number of frames: the image count, or the video's frame count (as the container reports it;
@@ -120,7 +125,7 @@ class Sequence {
 
   // Frames per second: the video's (else a `fps` entry in `<stem>_scene.yaml` beside it), or a
   // `fps` entry in scene.yaml / scene.yml / scene.txt / fps.txt inside the folder (written by
-  // generate_scene), else 30 (the OTB convention).
+  // generate_scene; fps.txt may hold a bare number), else 30 (the OTB convention).
   double fps() const { return fps_; }
 
   // Ground truth (empty when there is none). Boxes past its end count as absent.
@@ -144,8 +149,11 @@ class Sequence {
   const std::vector<std::string>& files() const { return files_; }
 
  private:
+  void openFolderVideo(const std::filesystem::path& folder, std::string* gt_file);
+  void openVideo(const std::string& file);
+
   Kind kind_ = Kind::kImageFolder;
-  std::string path_, name_;
+  std::string path_, name_, video_path_;
   int frame_count_ = 0;
   double fps_ = 30.0;
   int position_ = 0;

@@ -23,8 +23,9 @@ bool hasGroundTruthFile(const fs::path& dir) {
   return fs::exists(dir / "groundtruth_rect.txt") || fs::exists(dir / "groundtruth.txt");
 }
 
-// The sequences under --data: a video file, a folder that is itself a sequence, or a folder of
-// sequence folders (those without ground truth are skipped with a message).
+// The sequences under --data: a video file, a folder that is itself a sequence (images or one
+// video, with a ground-truth file), or a folder of sequence folders (those without ground truth
+// are skipped with a message).
 std::vector<SequenceInfo> discover(const std::string& data, const std::string& gt_path) {
   std::vector<SequenceInfo> seqs;
   const fs::path root(data);
@@ -32,12 +33,7 @@ std::vector<SequenceInfo> discover(const std::string& data, const std::string& g
   if (fs::is_regular_file(root) || hasGroundTruthFile(root) || !gt_path.empty()) {
     SequenceInfo one;
     one.path = data;
-    one.gt_path = gt_path;
-    // generate_scene writes a video's ground truth as <stem>_groundtruth_rect.txt beside it.
-    const fs::path scene_gt = root.parent_path() / (root.stem().string() + "_groundtruth_rect.txt");
-    if (one.gt_path.empty() && fs::is_regular_file(root) && fs::is_regular_file(scene_gt)) {
-      one.gt_path = scene_gt.string();
-    }
+    one.gt_path = gt_path;  // when empty, Sequence finds the ground-truth file
     seqs.push_back(one);
     return seqs;
   }
