@@ -3,7 +3,8 @@
 #
 # score_boxes from the outside: --help and usage errors, every input error (a missing or malformed
 # file, counts that differ) as a message naming the problem and exit code 1 rather than a crash,
-# and the scores of boxes equal to the ground truth.
+# the scores of boxes equal to the ground truth, and --describe of a sequence folder (its frames in
+# natural name order, its fps file, its ground truth or the one --gt names).
 #   usage: score_boxes_cli.sh PATH/TO/score_boxes
 set -uo pipefail
 TOOL=${1:?usage: score_boxes_cli.sh PATH/TO/score_boxes}
@@ -62,6 +63,23 @@ done
 expect 0 '^0,0,0,0$' --gt "$TMP/gt.txt" --print-gt
 cmp -s "$TMP/out" <(printf '10,10,20,20\n0,0,0,0\n30,30,10,10\n') \
   || { echo "FAILED: --print-gt printed:"; cat "$TMP/out"; failures=$((failures + 1)); }
+
+# --describe lists a folder's frames without decoding them, so empty files stand in for images.
+mkdir -p "$TMP/seq/img"
+for f in 10.png 2.png 1.png notes.txt; do : > "$TMP/seq/img/$f"; done
+printf 'fps: 25\n' > "$TMP/seq/fps.txt"
+cp "$TMP/gt.txt" "$TMP/seq/groundtruth_rect.txt"
+expect 0 '^kind=otb_folder$' --describe "$TMP/seq"
+cmp -s "$TMP/out" <(printf 'name=seq\nkind=otb_folder\nframe_count=3\nfps=25\nfile=%s\nfile=%s\nfile=%s\ngt=10,10,20,20\ngt=0,0,0,0\ngt=30,30,10,10\n' \
+                    "$TMP/seq/img/1.png" "$TMP/seq/img/2.png" "$TMP/seq/img/10.png") \
+  || { echo "FAILED: --describe printed:"; cat "$TMP/out"; failures=$((failures + 1)); }
+printf '1,2,3,4\n' > "$TMP/other_gt.txt"
+expect 0 '^gt=1,2,3,4$' --describe "$TMP/seq" --gt "$TMP/other_gt.txt"
+[ "$(grep -c '^gt=' "$TMP/out")" -eq 1 ] || { echo "FAILED: --describe --gt kept the folder's ground truth"; failures=$((failures + 1)); }
+expect 2 'score_boxes: --describe takes neither BOXES nor --print-gt' --describe "$TMP/seq" --print-gt
+expect 1 "'$TMP/nothing' is neither a folder nor a file" --describe "$TMP/nothing"
+expect 1 "is a single image" --describe "$TMP/seq/img/1.png"
+expect 1 "no image files in '$TMP/empty_folder'" --describe "$(mkdir -p "$TMP/empty_folder" && echo "$TMP/empty_folder")"
 
 [ "$failures" -eq 0 ] || { echo "score_boxes_cli: $failures failures"; exit 1; }
 echo "score_boxes_cli: all checks passed"
