@@ -1,7 +1,8 @@
 # Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
 """How the Python helpers (score_bag.py, sequence_to_bag.py) reach the C++ `score_boxes` tool, which
-reads ground-truth and box files and scores them with the metrics of `evaluate`
-(src/eval/metrics.cpp), so that the package parses and scores in one place.
+finds a sequence's files, reads ground-truth and box files and scores them with the metrics of
+`evaluate` (src/eval/metrics.cpp), so that the package reads sequences, parses and scores in one
+place.
 
 The tool is found by, in order: the path given (a script's --score-boxes), $OT_SCORE_BOXES,
 $OT_DEVEL/lib/obstacle_tracker/score_boxes, the catkin build beside the scripts
@@ -51,6 +52,27 @@ def load_gt(path, tool):
     for line in _run(tool, ["--gt", path, "--print-gt"]).splitlines():
         out.append(tuple(float(v) for v in line.split(",")))
     return out
+
+
+def describe_sequence(path, tool, gt_path=None):
+    """What the package finds in a sequence folder or video (eval::Sequence): a dict with name,
+    kind (otb_folder, image_folder or video), frame_count, fps, video (the path, for a video),
+    files (the frame images in order, for a folder) and gt (boxes as load_gt gives them)."""
+    args = ["--describe", path] + (["--gt", gt_path] if gt_path else [])
+    info = {"files": [], "gt": [], "video": None}
+    for line in _run(tool, args).splitlines():
+        key, _, value = line.partition("=")
+        if key == "file":
+            info["files"].append(value)
+        elif key == "gt":
+            info["gt"].append(tuple(float(v) for v in value.split(",")))
+        elif key in ("frame_count",):
+            info[key] = int(value)
+        elif key == "fps":
+            info[key] = float(value)
+        else:
+            info[key] = value
+    return info
 
 
 def is_absent(box):

@@ -14,10 +14,11 @@ Writes, per frame i (stamp = start_stamp + i / fps, also the bag time):
               pinhole with --hfov (default 60 degrees) and the principal point at the centre
   GT_TOPIC    (default /ground_truth)        obstacle_tracker/ObstacleArray: one obstacle (id 1,
               confidence 1, STATE_TRACKING) with the ground-truth box; empty when absent
-all with the same header (stamp, frame_id). The frame rate is --fps, else the video's, else the
-`fps` of scene.yaml / fps.txt, else 30 (the OTB convention). The ground-truth file is read by the
-package's C++ `score_boxes` tool (--score-boxes gives its path; see score_boxes_tool.py for where
-it is looked for otherwise), so that it means here what it means to the tracker's tools.
+all with the same header (stamp, frame_id). The sequence is read as evaluate and track_sequence
+read it: the package's C++ `score_boxes` tool (--describe) finds its frames, frame rate and
+ground-truth file (--score-boxes gives the tool's path; see score_boxes_tool.py for where it is
+looked for otherwise). The frame rate is --fps, else the sequence's (the video's, else the `fps`
+of scene.yaml / fps.txt, else 30, the OTB convention).
 
 Needs Debian's python3-rosbag, python3-sensor-msgs, python3-opencv, and the package's generated
 Python messages: source <build>/devel/setup.bash, or put <build>/devel/lib/python3/dist-packages
@@ -32,8 +33,6 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import score_boxes_tool  # noqa: E402
-
-IMAGE_EXT = {".jpg", ".jpeg", ".png", ".bmp", ".tif", ".tiff", ".pgm", ".ppm", ".pbm", ".webp"}
 
 
 def import_messages():
@@ -62,10 +61,6 @@ def import_messages():
              "<build>/devel/setup.bash (or PYTHONPATH=<build>/devel/lib/python3/dist-packages)")
 
 
-def natural_key(name):
-    return [int(t) if t.isdigit() else t.lower() for t in re.split(r"(\d+)", name)]
-
-
 def read_key_value(path, key):
     """`key: value` / `key=value` / `key value` from a small text file; None when absent."""
     try:
@@ -79,70 +74,49 @@ def read_key_value(path, key):
     return None
 
 
+def scene_focal_length(path):
+    """focal_length_px of a generated scene: scene.yaml in its folder, or <stem>_scene.yaml / the
+    folder's scene.yaml beside its video; None when not given."""
+    if os.path.isdir(path):
+        names = [os.path.join(path, "scene.yaml")]
+    else:
+        stem, folder = os.path.splitext(path)[0], os.path.dirname(path)
+        names = [stem + "_scene.yaml", os.path.join(folder, "scene.yaml")]
+    for name in names:
+        if os.path.isfile(name):
+            return read_key_value(name, "focal_length_px")
+    return None
+
+
 class SequenceSource:
-    """Frames (decoded as stored) and ground truth of an OTB folder, image folder or video."""
+    """Frames (decoded as stored) and ground truth of an OTB folder, image folder or video, found
+    by the package's own rules (score_boxes --describe, i.e. eval::Sequence)."""
 
     def __init__(self, path, gt_path=None, score_boxes=None):
         import cv2
         self.cv2 = cv2
         self.path = path
-        self.fps = None
-        self.meta = {}
-        self.files = []
-        self.capture = None
-        if os.path.isdir(path):
-            img_dir = os.path.join(path, "img") if os.path.isdir(os.path.join(path, "img")) else path
-            self.files = sorted((os.path.join(img_dir, f) for f in os.listdir(img_dir)
-                                 if os.path.splitext(f)[1].lower() in IMAGE_EXT),
-                                key=lambda p: natural_key(os.path.basename(p)))
-            if not self.files:
-                sys.exit("sequence_to_bag: no image in %s" % img_dir)
-            for name in ("scene.yaml", "scene.yml", "scene.txt", "fps.txt"):
-                v = read_key_value(os.path.join(path, name), "fps")
-                if v:
-                    self.fps = v
-                    break
-            self.meta["focal_length_px"] = read_key_value(os.path.join(path, "scene.yaml"), "focal_length_px")
-            if gt_path is None:
-                for name in ("groundtruth_rect.txt", "groundtruth.txt"):
-                    if os.path.isfile(os.path.join(path, name)):
-                        gt_path = os.path.join(path, name)
-                        break
-            self.count = len(self.files)
-        elif os.path.isfile(path):
-            self.capture = cv2.VideoCapture(path)
-            if not self.capture.isOpened():
-                sys.exit("sequence_to_bag: cannot open video %s" % path)
-            v = self.capture.get(cv2.CAP_PROP_FPS)
-            self.fps = v if v and v > 0 and math.isfinite(v) else None
-            self.count = int(self.capture.get(cv2.CAP_PROP_FRAME_COUNT))
-            stem = os.path.splitext(path)[0]
-            folder = os.path.dirname(path)
-            if gt_path is None:
-                for cand in (stem + ".txt", stem + "_gt.txt", stem + "_groundtruth_rect.txt",
-                             os.path.join(folder, "groundtruth_rect.txt")):
-                    if os.path.isfile(cand):
-                        gt_path = cand
-                        break
-            for name in (stem + "_scene.yaml", os.path.join(folder, "scene.yaml")):
-                if os.path.isfile(name):
-                    self.meta["focal_length_px"] = read_key_value(name, "focal_length_px")
-                    break
-        else:
-            sys.exit("sequence_to_bag: %s does not exist" % path)
-        self.gt = score_boxes_tool.load_gt(gt_path, score_boxes_tool.find_tool(score_boxes)) if gt_path else []
-        self.gt_path = gt_path
+        info = score_boxes_tool.describe_sequence(path, score_boxes_tool.find_tool(score_boxes), gt_path)
+        self.files = info["files"]
+        self.video = info["video"]
+        self.fps = info["fps"]
+        self.count = len(self.files) if self.video is None else info["frame_count"]
+        self.gt = info["gt"]
+        self.meta = {"focal_length_px": scene_focal_length(path)}
 
     def frames(self):
-        if self.capture is None:
+        if self.video is None:
             for f in self.files:
                 img = self.cv2.imread(f, self.cv2.IMREAD_UNCHANGED)
                 if img is None:
                     sys.exit("sequence_to_bag: cannot decode %s" % f)
                 yield img
         else:
+            capture = self.cv2.VideoCapture(self.video)
+            if not capture.isOpened():
+                sys.exit("sequence_to_bag: cannot open video %s" % self.video)
             while True:
-                ok, img = self.capture.read()
+                ok, img = capture.read()
                 if not ok:
                     return
                 yield img
@@ -207,7 +181,7 @@ def main(argv=None):
     Obstacle, ObstacleArray = import_messages()
 
     src = SequenceSource(args.sequence, args.gt, args.score_boxes)
-    fps = args.fps or src.fps or 30.0
+    fps = args.fps or src.fps
     if not (fps > 0):
         sys.exit("sequence_to_bag: --fps must be > 0")
     total = src.count if args.max_frames <= 0 else min(src.count, args.max_frames)
