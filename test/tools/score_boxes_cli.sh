@@ -79,7 +79,7 @@ expect 0 '^gt=1,2,3,4$' --describe "$TMP/seq" --gt "$TMP/other_gt.txt"
 expect 2 'score_boxes: --describe takes neither BOXES nor --print-gt' --describe "$TMP/seq" --print-gt
 expect 1 "'$TMP/nothing' is neither a folder nor a file" --describe "$TMP/nothing"
 expect 1 "is a single image" --describe "$TMP/seq/img/1.png"
-expect 1 "no image files in '$TMP/empty_folder'" --describe "$(mkdir -p "$TMP/empty_folder" && echo "$TMP/empty_folder")"
+expect 1 "no image or video files in '$TMP/empty_folder'" --describe "$(mkdir -p "$TMP/empty_folder" && echo "$TMP/empty_folder")"
 
 [ "$failures" -eq 0 ] || { echo "score_boxes_cli: $failures failures"; exit 1; }
 echo "score_boxes_cli: all checks passed"
