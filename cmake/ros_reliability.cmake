@@ -2,8 +2,8 @@
 #   test/ros/reliability/bad_input.test  every kind of bad image, parameter, camera_info and tf
 #   test/ros/reliability/load.test       1280x720 at 200 Hz for 60 s: which frames are answered,
 #                                        memory, drops
-# Each NAME.test is run by the test node reliability_NAME (test/ros/reliability/NAME.cpp,
-# GoogleTest inside rostest). The load test runs alone (RUN_SERIAL): it saturates both cores and
+# Each NAME.test is run by the test node reliability_NAME (test/ros/reliability/NAME.cpp and its
+# parts, GoogleTest inside rostest). The load test runs alone (RUN_SERIAL): it saturates both cores and
 # would only lengthen the tests beside it.
 if(NOT CATKIN_ENABLE_TESTING)
   return()
@@ -11,8 +11,12 @@ endif()
 
 set(OT_RELIABILITY_DIR test/ros/reliability)
 set(OT_LOAD_SECONDS 60 CACHE STRING "Duration of the reliability load rostest (s)")
+# bad_input.cpp comes first: GoogleTest runs the suites in the order the sources register them,
+# and its first test waits for the manager and both trackers.
+set(OT_RELIABILITY_bad_input_EXTRA ${OT_RELIABILITY_DIR}/bad_geometry.cpp ${OT_RELIABILITY_DIR}/bad_input_harness.cpp)
 foreach(name bad_input load)
-  catkin_add_executable_with_gtest(reliability_${name} ${OT_RELIABILITY_DIR}/${name}.cpp EXCLUDE_FROM_ALL)
+  catkin_add_executable_with_gtest(reliability_${name} ${OT_RELIABILITY_DIR}/${name}.cpp
+    ${OT_RELIABILITY_${name}_EXTRA} EXCLUDE_FROM_ALL)
   target_link_libraries(reliability_${name} obstacle_tracker_nodelet ${OT_LIBS} ${catkin_LIBRARIES})
   set_target_properties(reliability_${name} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${OT_ROS_BIN_DIR})
   add_dependencies(reliability_${name} ${PROJECT_NAME}_generate_messages_cpp)

@@ -5,208 +5,42 @@
 // data shorter than step x height, step shorter than a row, sizes whose step x height overflows
 // 32 bits, odd 16-bit steps, duplicate / backward / jumping / zero stamps, flat frames, 32FC1
 // full of NaN; bad parameters at startup (launch file) and through dynamic_reconfigure; bad
-// camera_info (zeros, NaN, wrong distortion) and a missing tf. After each bad input the next good
-// frame must give an ObstacleArray and the manager must still be alive; refusals must be logged
-// and counted in the diagnostics.
-#include <array>
+// camera_info and a missing tf (bad_geometry.cpp). After each bad input the next good frame must
+// give an ObstacleArray and the manager must still be alive; refusals must be logged and counted
+// in the diagnostics. The harness (connections, logs, checks) is bad_input_harness.h.
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <functional>
-#include <limits>
-#include <map>
-#include <memory>
 #include <string>
-#include <thread>
 #include <vector>
 
-#include <diagnostic_msgs/DiagnosticArray.h>
 #include <dynamic_reconfigure/Config.h>
 #include <dynamic_reconfigure/Reconfigure.h>
-#include <geometry_msgs/TransformStamped.h>
 #include <gtest/gtest.h>
 #include <ros/ros.h>
 #include <ros/topic.h>
-#include <rosgraph_msgs/Log.h>
-#include <sensor_msgs/CameraInfo.h>
 #include <sensor_msgs/Image.h>
-#include <tf2_ros/static_transform_broadcaster.h>
 
-#include <opencv2/imgproc.hpp>
-
+#include "bad_input_harness.h"
 #include "obstacle_tracker/core/params.h"
-#include "obstacle_tracker/scene/scene_generator.h"
-#include "reliability_common.h"
 
 namespace rel = obstacle_tracker::reliability;
-
-namespace {
-
-const double kNan = std::numeric_limits<double>::quiet_NaN();
-const double kInf = std::numeric_limits<double>::infinity();
-
-struct Context {
-  std::unique_ptr<ros::NodeHandle> nh;
-  ros::Publisher image_pub, geo_image_pub, geo_info_pub;
-  ros::Subscriber out_sub, geo_out_sub, log_sub, diag_sub;
-  rel::OutputCollector out, geo_out;
-  std::mutex mutex;
-  std::vector<rosgraph_msgs::Log> logs;
-  std::map<std::string, std::map<std::string, std::string>> diagnostics;  // status name -> key -> value
-  int manager_pid = -1;
-  int good_x = 40;
-  int refused_expected = 0;
-};
-Context* ctx = nullptr;
-
-void onLog(const rosgraph_msgs::Log::ConstPtr& msg) {
-  std::lock_guard<std::mutex> lock(ctx->mutex);
-  ctx->logs.push_back(*msg);
-}
-
-void onDiagnostics(const diagnostic_msgs::DiagnosticArray::ConstPtr& msg) {
-  std::lock_guard<std::mutex> lock(ctx->mutex);
-  for (const auto& status : msg->status) {
-    auto& values = ctx->diagnostics[status.name];
-    for (const auto& kv : status.values) values[kv.key] = kv.value;
-    values["__message"] = status.message;
-  }
-}
-
-// A /rosout message at WARN or above containing every one of `parts`.
-bool logged(const std::vector<std::string>& parts) {
-  std::lock_guard<std::mutex> lock(ctx->mutex);
-  for (const auto& log : ctx->logs) {
-    if (log.level < rosgraph_msgs::Log::WARN) continue;
-    bool all = true;
-    for (const auto& p : parts) all = all && log.msg.find(p) != std::string::npos;
-    if (all) return true;
-  }
-  return false;
-}
-
-bool waitLogged(const std::vector<std::string>& parts, double timeout) {
-  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout);
-  while (ros::WallTime::now() < end) {
-    if (logged(parts)) return true;
-    ros::WallDuration(0.05).sleep();
-  }
-  return logged(parts);
-}
-
-// The diagnostics value `key` of the status whose name starts with `prefix` (-1 if absent).
-double diagnosticValue(const std::string& prefix, const std::string& key) {
-  std::lock_guard<std::mutex> lock(ctx->mutex);
-  for (const auto& status : ctx->diagnostics) {
-    if (status.first.rfind(prefix, 0) != 0 || status.first.find("obstacle tracker") == std::string::npos) continue;
-    auto it = status.second.find(key);
-    if (it != status.second.end()) return std::atof(it->second.c_str());
-  }
-  return -1.0;
-}
-
-::testing::AssertionResult managerAlive() {
-  if (rel::processAlive(ctx->manager_pid)) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << "nodelet manager (pid " << ctx->manager_pid << ") is gone";
-}
-
-// Publishes a good frame (moving square, fresh stamp) and waits for its output; a few attempts
-// (a frame can be replaced in the queue of size 1 while the tracker is busy).
-::testing::AssertionResult goodFrameProcessed(const std::string& after) {
-  for (int attempt = 0; attempt < 4; ++attempt) {
-    ctx->good_x = 40 + (ctx->good_x - 40 + 2) % 60;
-    sensor_msgs::Image img = rel::squareImage(160, 120, ctx->good_x, 50, 20);
-    img.header.stamp = ros::Time::now();
-    img.header.frame_id = "camera";
-    ctx->image_pub.publish(img);
-    auto out = ctx->out.waitFor(img.header.stamp, 5.0);
-    if (out) {
-      const std::string bad = rel::checkOutput(*out);
-      if (!bad.empty()) return ::testing::AssertionFailure() << "good frame after " << after << ": " << bad;
-      if (out->image_width != 160 || out->image_height != 120) {
-        return ::testing::AssertionFailure() << "good frame after " << after << ": wrong size in the output";
-      }
-      if (!managerAlive()) return managerAlive() << " after " << after;
-      return ::testing::AssertionSuccess();
-    }
-  }
-  if (!managerAlive()) return managerAlive() << " after " << after;
-  return ::testing::AssertionFailure() << "no ObstacleArray for a good frame after " << after;
-}
-
-sensor_msgs::Image rawImage(std::uint32_t width, std::uint32_t height, const std::string& encoding,
-                            std::uint32_t step, std::size_t bytes, std::uint8_t fill = 100) {
-  sensor_msgs::Image img;
-  img.width = width;
-  img.height = height;
-  img.encoding = encoding;
-  img.step = step;
-  img.data.assign(bytes, fill);
-  img.header.frame_id = "camera";
-  return img;
-}
-
-std::size_t logCount() {
-  std::lock_guard<std::mutex> lock(ctx->mutex);
-  return ctx->logs.size();
-}
-
-// /rosout messages since `from` (an index from logCount()) that contain `part`.
-int logsSince(std::size_t from, const std::string& part) {
-  std::lock_guard<std::mutex> lock(ctx->mutex);
-  int n = 0;
-  for (std::size_t i = from; i < ctx->logs.size(); ++i) n += ctx->logs[i].msg.find(part) != std::string::npos;
-  return n;
-}
-
-enum class Expect {
-  kProcessed,  // a valid but odd image: an output for it, and no error logged
-  kRefused,    // no output; counted as refused in the diagnostics
-  kEither,     // converted or refused (documented either way); never a crash
-};
-
-// Sends one bad image, then a good frame must get through and the manager must be alive.
-void sendBad(const std::string& what, sensor_msgs::Image img, Expect expect, bool keep_stamp = false,
-             double timeout = 15.0) {
-  SCOPED_TRACE(what);
-  if (!keep_stamp) img.header.stamp = ros::Time::now();
-  const std::size_t before = ctx->out.count();
-  const std::size_t logs_before = logCount();
-  ctx->image_pub.publish(img);
-  if (expect == Expect::kProcessed) {
-    auto out = ctx->out.waitFor(img.header.stamp, timeout);
-    ASSERT_TRUE(out != nullptr) << what << ": no output";
-    EXPECT_EQ(rel::checkOutput(*out), "") << what;
-    EXPECT_EQ(out->image_width, img.width) << what;
-  } else {
-    ros::WallDuration(0.4).sleep();
-    if (expect == Expect::kRefused) {
-      EXPECT_EQ(ctx->out.count(), before) << what << ": refused frame produced an output";
-      ++ctx->refused_expected;
-    }
-  }
-  EXPECT_TRUE(goodFrameProcessed(what));
-  std::printf("bad input '%s': %s, %zu outputs before, %zu after\n", what.c_str(),
-              expect == Expect::kProcessed ? "processed" : expect == Expect::kRefused ? "refused" : "either",
-              before, ctx->out.count());
-  if (expect == Expect::kProcessed) {
-    EXPECT_EQ(logsSince(logs_before, "error on a"), 0) << what << ": a processed frame was also reported as an error";
-  }
-}
-
-}  // namespace
+using rel::ctx;
+using rel::diagnosticValue;
+using rel::Expect;
+using rel::goodFrameProcessed;
+using rel::kInf;
+using rel::kNan;
+using rel::managerAlive;
+using rel::rawImage;
+using rel::sendBad;
+using rel::waitForTrackers;
+using rel::waitLogged;
 
 TEST(BadInput, ManagerAndTrackersAreUp) {
-  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(30.0);
-  while (ros::WallTime::now() < end &&
-         (ctx->image_pub.getNumSubscribers() == 0 || ctx->out_sub.getNumPublishers() == 0 ||
-          ctx->geo_image_pub.getNumSubscribers() == 0 || ctx->geo_info_pub.getNumSubscribers() == 0 ||
-          ctx->geo_out_sub.getNumPublishers() == 0 || ctx->log_sub.getNumPublishers() < 2)) {
-    ros::WallDuration(0.1).sleep();
-  }
+  waitForTrackers();
   ASSERT_GT(ctx->image_pub.getNumSubscribers(), 0u);
   ASSERT_GT(ctx->out_sub.getNumPublishers(), 0u);
-  ctx->manager_pid = rel::nodePid("/manager");
   ASSERT_GT(ctx->manager_pid, 0) << "cannot get the manager's pid through XML-RPC getPid";
   ASSERT_TRUE(managerAlive());
   ASSERT_TRUE(goodFrameProcessed("start"));
@@ -390,117 +224,6 @@ TEST(BadInput, DynamicReconfigureRefusesOrClampsBadValues) {
   EXPECT_TRUE(goodFrameProcessed("dynamic_reconfigure reset"));
 }
 
-TEST(BadGeometry, BadCameraInfoAndMissingTfLeaveBearingsOutWithoutBlocking) {
-  // tracker_geo: use_camera_info true, target_frame "world" (no tf until the end of this test).
-  auto goodInfo = [](const ros::Time& stamp) {
-    sensor_msgs::CameraInfo info;
-    info.header.stamp = stamp;
-    info.header.frame_id = "camera";
-    info.width = 320;
-    info.height = 240;
-    info.distortion_model = "plumb_bob";
-    info.D = {0, 0, 0, 0, 0};
-    info.K = {300, 0, 160, 0, 300, 120, 0, 0, 1};
-    info.R = {1, 0, 0, 0, 1, 0, 0, 0, 1};
-    info.P = {300, 0, 160, 0, 0, 300, 120, 0, 0, 0, 1, 0};
-    return info;
-  };
-  // Frames of a generated scene (an aircraft crossing the sky): the tracker finds
-  // it, so bearings can be checked. Played in a loop, one frame per pair.
-  std::vector<sensor_msgs::Image> scene;
-  {
-    auto gen = obstacle_tracker::scene::makeScenario("crossing", 3, 120, cv::Size(320, 240));
-    cv::Mat frame;
-    for (int i = 0; i < gen.frameCount(); ++i) {
-      gen.renderFrame(i, frame);
-      sensor_msgs::Image img;
-      img.width = 320;
-      img.height = 240;
-      img.encoding = "bgr8";
-      img.step = 320 * 3;
-      img.data.assign(frame.data, frame.data + frame.total() * frame.elemSize());
-      img.header.frame_id = "camera";
-      scene.push_back(img);
-    }
-  }
-  std::size_t next_frame = 0;
-  // Runs `frames` synchronised pairs; returns (outputs received, outputs with obstacles, with bearings).
-  auto run = [&](const std::string& what, int frames,
-                 const std::function<void(sensor_msgs::CameraInfo&)>& spoil) {
-    int outputs = 0, with_obstacles = 0, with_bearing = 0;
-    for (int i = 0; i < frames; ++i) {
-      sensor_msgs::Image img = scene[next_frame++ % scene.size()];
-      img.header.stamp = ros::Time::now();
-      img.header.frame_id = "camera";
-      sensor_msgs::CameraInfo info = goodInfo(img.header.stamp);
-      spoil(info);
-      ctx->geo_info_pub.publish(info);
-      ctx->geo_image_pub.publish(img);
-      auto out = ctx->geo_out.waitFor(img.header.stamp, 2.0);
-      if (!out) continue;
-      ++outputs;
-      EXPECT_EQ(rel::checkOutput(*out), "") << what;
-      if (!out->obstacles.empty()) ++with_obstacles;
-      for (const auto& o : out->obstacles) with_bearing += o.has_bearing ? 1 : 0;
-    }
-    EXPECT_TRUE(managerAlive()) << what;
-    std::printf("camera_info phase '%s': %d frames, %d outputs, %d with obstacles, %d bearings\n", what.c_str(),
-                frames, outputs, with_obstacles, with_bearing);
-    return std::array<int, 3>{outputs, with_obstacles, with_bearing};
-  };
-  const int n = 40;
-  auto zeros = run("camera_info of zeros", n, [](sensor_msgs::CameraInfo& i) {
-    i.K = {0, 0, 0, 0, 0, 0, 0, 0, 0};
-    i.P = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
-    i.D.clear();
-    i.width = i.height = 0;
-  });
-  EXPECT_GE(zeros[0], n / 2) << "outputs stopped with a zero camera_info";
-  EXPECT_EQ(zeros[2], 0) << "bearings from a zero camera_info";
-  const std::size_t nan_logs = logCount();
-  auto nans = run("camera_info with NaN", n, [](sensor_msgs::CameraInfo& i) {
-    i.K[0] = kNan;
-    i.K[4] = kNan;
-    i.D[0] = kNan;
-  });
-  EXPECT_GE(nans[0], n / 2);
-  EXPECT_EQ(nans[2], 0) << "bearings from a NaN camera_info";
-  // The same bad camera_info on every frame is reported once, not at camera rate.
-  EXPECT_LE(logsSince(nan_logs, "camera_info unusable"), 2) << "an unchanged NaN camera_info is re-logged every frame";
-  auto bad_d = run("camera_info with 100 distortion coefficients", n / 2,
-                   [](sensor_msgs::CameraInfo& i) { i.D.assign(100, 0.1); });
-  EXPECT_GE(bad_d[0], n / 4);
-  auto odd_model = run("unknown distortion model", n / 2, [](sensor_msgs::CameraInfo& i) {
-    i.distortion_model = "no_such_model";
-    i.D = {0.1, 0.2, 0.0, 0.0, 0.0};
-  });
-  EXPECT_GE(odd_model[0], n / 4);
-  auto binning0 = run("binning and roi beyond the image", n / 2, [](sensor_msgs::CameraInfo& i) {
-    i.binning_x = 0;
-    i.roi.x_offset = 100000;
-    i.roi.width = 5;
-  });
-  EXPECT_GE(binning0[0], n / 4);
-  // A valid camera_info but no transform to "world": bearings left out, frames still flow.
-  auto no_tf = run("missing tf", n, [](sensor_msgs::CameraInfo&) {});
-  EXPECT_GE(no_tf[0], n / 2) << "a missing tf blocked the outputs";
-  EXPECT_EQ(no_tf[2], 0) << "bearings without a transform to target_frame";
-  EXPECT_GT(no_tf[1] + zeros[1] + nans[1], 0) << "no obstacle found at all: the checks above prove nothing";
-  EXPECT_TRUE(waitLogged({"world"}, 5.0)) << "no /rosout message about the missing transform";
-  // Now the transform arrives: bearings appear (the positive control of the checks above).
-  tf2_ros::StaticTransformBroadcaster broadcaster;
-  geometry_msgs::TransformStamped tf;
-  tf.header.stamp = ros::Time(0);
-  tf.header.frame_id = "world";
-  tf.child_frame_id = "camera";
-  tf.transform.rotation.w = 1.0;
-  broadcaster.sendTransform(tf);
-  ros::WallDuration(1.0).sleep();
-  auto with_tf = run("with tf", n, [](sensor_msgs::CameraInfo&) {});
-  EXPECT_GE(with_tf[0], n / 2);
-  EXPECT_GT(with_tf[2], 0) << "no bearing even with a valid camera_info and tf";
-}
-
 TEST(BadInput, RefusalsAreCountedInDiagnostics) {
   // The diagnostics period is about a second; wait for a status that includes every refusal.
   const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(10.0);
@@ -517,23 +240,12 @@ TEST(BadInput, RefusalsAreCountedInDiagnostics) {
 int main(int argc, char** argv) {
   testing::InitGoogleTest(&argc, argv);
   ros::init(argc, argv, "reliability_bad_input");
-  Context context;
-  ctx = &context;
-  context.nh.reset(new ros::NodeHandle);
-  ros::NodeHandle& nh = *context.nh;
-  context.image_pub = nh.advertise<sensor_msgs::Image>("/camera/image", 1);
-  context.geo_image_pub = nh.advertise<sensor_msgs::Image>("/geo/image", 1);
-  context.geo_info_pub = nh.advertise<sensor_msgs::CameraInfo>("/geo/camera_info", 1);
-  context.out_sub = nh.subscribe<obstacle_tracker::ObstacleArray>(
-      "/tracker/obstacles", 10, &rel::OutputCollector::callback, &context.out);
-  context.geo_out_sub = nh.subscribe<obstacle_tracker::ObstacleArray>(
-      "/tracker_geo/obstacles", 10, &rel::OutputCollector::callback, &context.geo_out);
-  context.log_sub = nh.subscribe("/rosout", 1000, onLog);
-  context.diag_sub = nh.subscribe("/diagnostics", 100, onDiagnostics);
+  rel::Context context;
+  rel::connect(context);
   ros::AsyncSpinner spinner(2);
   spinner.start();
   const int result = RUN_ALL_TESTS();
   spinner.stop();
-  ctx = nullptr;
+  rel::ctx = nullptr;
   return result;
 }
