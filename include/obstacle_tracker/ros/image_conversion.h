@@ -9,8 +9,9 @@
 //   bayer_{rggb,bggr,gbrg,grbg}8       -> CV_8UC3 BGR (demosaiced)
 //   bayer_*16                          -> demosaiced at 16 bit, then percentile stretch
 //   yuv422 (UYVY), yuv422_yuy2 (YUYV)  -> CV_8UC3 BGR
-// The colour conversions are cv_bridge's (cv_bridge::cvtColor); the 8UCn / 16UC1 names are taken
-// as grey, BGR and BGRA. 16-bit data in either byte order (is_bigendian) is read correctly.
+// The colour conversions are cv_bridge's (cv_bridge::cvtColor), but for yuv422_yuy2, which it
+// does not know; the 8UCn / 16UC1 names are taken as grey, BGR and BGRA. 16-bit data in either
+// byte order (is_bigendian) is read correctly.
 // Anything else (32FC3, 16SC1, a misspelt name, ...) throws UnsupportedEncoding; a message whose
 // data is not exactly step x height bytes, whose step is shorter than a row or (16-bit) odd, or
 // that is empty or has a side above 65536 throws MalformedImage. Nothing here reads outside the
