@@ -1,13 +1,14 @@
 // Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
 //
 // Heap-allocation counting for the "no allocation" tests (test_extent, test_intensity_stretch,
-// test_kcf_alloc, test_pipeline_memory, test_region_labels, test_target_contrast). Include it in
-// exactly one translation unit of a test program: it replaces malloc, calloc, realloc, memalign,
-// aligned_alloc and posix_memalign (glibc exports the real ones as __libc_*) with versions that
-// count calls, and the largest block asked for, while g_counting is set. Under a sanitizer (which
-// interposes the allocator itself) or without glibc, OT_COUNT_ALLOCATIONS stays undefined, nothing
-// is replaced and the tests skip with a message (OT_SKIP_UNLESS_COUNTING_ALLOCATIONS). (memory_probe
-// has its own wrappers that forward to the next allocator, so that heaptrack still sees every call.)
+// test_kcf_alloc, test_pipeline_memory, test_region_labels, test_target_contrast, and
+// test/ros/test_image_conversion). Include it in exactly one translation unit of a test program: it
+// replaces malloc, calloc, realloc, memalign, aligned_alloc and posix_memalign (glibc exports the
+// real ones as __libc_*) with versions that count calls, and the largest block asked for, while
+// g_counting is set. Under a sanitizer (which interposes the allocator itself) or without glibc,
+// OT_COUNT_ALLOCATIONS stays undefined, nothing is replaced and the tests skip with a message
+// (OT_SKIP_UNLESS_COUNTING_ALLOCATIONS). (memory_probe has its own wrappers that forward to the
+// next allocator, so that heaptrack still sees every call.)
 #pragma once
 
 #include <atomic>
