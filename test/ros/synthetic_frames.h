@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstring>
 #include <string>
+#include <utility>
 
 #include <opencv2/imgproc.hpp>
 #include <sensor_msgs/CameraInfo.h>
@@ -42,21 +43,31 @@ inline cv::Mat skyFrame(int i, int width = 320, int height = 240) {
   return frame;
 }
 
+// A message holding m's pixels under `encoding` (m's own type), packed rows; 16-bit values in
+// big-endian byte order when big_endian.
+inline sensor_msgs::Image imageMessage(const cv::Mat& m, const std::string& encoding, bool big_endian = false) {
+  sensor_msgs::Image msg;
+  msg.height = m.rows;
+  msg.width = m.cols;
+  msg.encoding = encoding;
+  msg.is_bigendian = big_endian;
+  msg.step = static_cast<std::uint32_t>(m.cols * m.elemSize());
+  msg.data.resize(static_cast<std::size_t>(msg.step) * m.rows);
+  for (int r = 0; r < m.rows; ++r) {
+    std::memcpy(&msg.data[static_cast<std::size_t>(r) * msg.step], m.ptr(r), msg.step);
+  }
+  if (big_endian && m.depth() == CV_16U) {
+    for (std::size_t i = 0; i + 1 < msg.data.size(); i += 2) std::swap(msg.data[i], msg.data[i + 1]);
+  }
+  return msg;
+}
+
 inline sensor_msgs::Image toImageMsg(const cv::Mat& bgr, const std::string& frame_id, double stamp,
                                      std::uint32_t seq) {
-  sensor_msgs::Image msg;
+  sensor_msgs::Image msg = imageMessage(bgr, sensor_msgs::image_encodings::BGR8);
   msg.header.frame_id = frame_id;
   msg.header.stamp.fromSec(stamp);
   msg.header.seq = seq;
-  msg.height = bgr.rows;
-  msg.width = bgr.cols;
-  msg.encoding = sensor_msgs::image_encodings::BGR8;
-  msg.is_bigendian = 0;
-  msg.step = static_cast<std::uint32_t>(bgr.cols * bgr.elemSize());
-  msg.data.resize(static_cast<std::size_t>(msg.step) * bgr.rows);
-  for (int r = 0; r < bgr.rows; ++r) {
-    std::memcpy(&msg.data[static_cast<std::size_t>(r) * msg.step], bgr.ptr(r), msg.step);
-  }
   return msg;
 }
 

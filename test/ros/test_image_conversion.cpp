@@ -17,28 +17,13 @@
 #include "../core/alloc_counter.h"
 #include "obstacle_tracker/core/intensity_stretch.h"
 #include "obstacle_tracker/ros/image_conversion.h"
+#include "synthetic_frames.h"
 
 using obstacle_tracker::bridge::FrameConverter;
 using obstacle_tracker::bridge::MalformedImage;
+using obstacle_tracker::testing::imageMessage;
 
 namespace {
-
-sensor_msgs::Image wrap(const cv::Mat& m, const std::string& encoding, bool big_endian = false) {
-  sensor_msgs::Image msg;
-  msg.height = m.rows;
-  msg.width = m.cols;
-  msg.encoding = encoding;
-  msg.is_bigendian = big_endian;
-  msg.step = static_cast<std::uint32_t>(m.cols * m.elemSize());
-  msg.data.resize(static_cast<std::size_t>(msg.step) * m.rows);
-  for (int r = 0; r < m.rows; ++r) std::memcpy(&msg.data[r * msg.step], m.ptr(r), msg.step);
-  if (big_endian && m.depth() == CV_16U) {
-    for (std::size_t i = 0; i + 1 < msg.data.size(); i += 2) {
-      std::swap(msg.data[i], msg.data[i + 1]);
-    }
-  }
-  return msg;
-}
 
 double maxAbsDiff(const cv::Mat& a, const cv::Mat& b) { return cv::norm(a, b, cv::NORM_INF); }
 
@@ -107,7 +92,7 @@ TEST(ImageEncodings, EveryAcceptedEncodingIsConvertedAsOpenCvWould) {
   for (const Expected& e : kExpected) {
     const cv::Mat pixels = randomPixels(e.type, static_cast<int>(covered.size()) + 1);
     FrameConverter conv;
-    const cv::Mat& out = conv.convert(wrap(pixels, e.encoding));
+    const cv::Mat& out = conv.convert(imageMessage(pixels, e.encoding));
     const cv::Mat expected = reference(e, pixels);
     ASSERT_EQ(out.type(), expected.type()) << e.encoding;
     EXPECT_EQ(maxAbsDiff(out, expected), 0.0) << e.encoding;
@@ -120,7 +105,7 @@ TEST(ImageEncodings, Yuy2NeutralChromaIsGrey) {
   // Y0 U Y1 V with U = V = 128: BT.601 video range, Y = 200 is (200 - 16) * 255 / 219 = 214.
   cv::Mat yuyv(8, 8, CV_8UC2, cv::Scalar(200, 128));
   FrameConverter conv;
-  const cv::Mat& out = conv.convert(wrap(yuyv, "yuv422_yuy2"));
+  const cv::Mat& out = conv.convert(imageMessage(yuyv, "yuv422_yuy2"));
   ASSERT_EQ(out.type(), CV_8UC3);
   for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(out.at<cv::Vec3b>(4, 4)[ch], 214, 2) << ch;
 }
@@ -130,8 +115,8 @@ TEST(ImageEncodings, SixteenBitBigEndianGivesTheSameFrame) {
     if (CV_MAT_DEPTH(e.type) != CV_16U) continue;
     const cv::Mat pixels = randomPixels(e.type, 3);
     FrameConverter little, big;
-    const cv::Mat& from_little = little.convert(wrap(pixels, e.encoding, false));
-    const cv::Mat& from_big = big.convert(wrap(pixels, e.encoding, true));
+    const cv::Mat& from_little = little.convert(imageMessage(pixels, e.encoding, false));
+    const cv::Mat& from_big = big.convert(imageMessage(pixels, e.encoding, true));
     ASSERT_EQ(from_big.type(), from_little.type()) << e.encoding;
     EXPECT_EQ(maxAbsDiff(from_big, from_little), 0.0) << e.encoding;
     EXPECT_EQ(big.stretch().lastLow(), little.stretch().lastLow()) << e.encoding;
@@ -149,7 +134,7 @@ TEST(ImageEncodings, EightBitFlaggedBigEndianIsReadAsIs) {
     ASSERT_NE(e, nullptr);
     const cv::Mat pixels = randomPixels(e->type, 5);
     FrameConverter conv;
-    sensor_msgs::Image msg = wrap(pixels, encoding);
+    sensor_msgs::Image msg = imageMessage(pixels, encoding);
     msg.is_bigendian = 1;
     EXPECT_EQ(maxAbsDiff(conv.convert(msg), reference(*e, pixels)), 0.0) << encoding;
   }
@@ -158,7 +143,7 @@ TEST(ImageEncodings, EightBitFlaggedBigEndianIsReadAsIs) {
 TEST(ImageEncodings, ResultNeverPointsIntoTheMessage) {
   for (const Expected& e : kExpected) {
     const cv::Mat pixels = randomPixels(e.type, 7);
-    sensor_msgs::Image msg = wrap(pixels, e.encoding);
+    sensor_msgs::Image msg = imageMessage(pixels, e.encoding);
     FrameConverter conv;
     const cv::Mat& out = conv.convert(msg);
     const cv::Mat copy = out.clone();
@@ -182,7 +167,7 @@ TEST(ImageEncodings, ReusedBufferPathsAllocateNothingPerFrame) {
       if (std::string(x.encoding) == path.first) e = &x;
     }
     ASSERT_NE(e, nullptr);
-    const sensor_msgs::Image msg = wrap(randomPixels(e->type, 9), path.first, path.second);
+    const sensor_msgs::Image msg = imageMessage(randomPixels(e->type, 9), path.first, path.second);
     FrameConverter conv;
     conv.convert(msg);  // sizes the buffers
     g_allocations = 0;
@@ -204,11 +189,11 @@ TEST(ImageEncodings, SizesCvBridgeWouldRefuseOrMissAreMalformed) {
     return "accepted";
   };
   // Trailing bytes: cv_bridge wants exactly step x height.
-  sensor_msgs::Image longer = wrap(randomPixels(CV_8UC1, 1), "mono8");
+  sensor_msgs::Image longer = imageMessage(randomPixels(CV_8UC1, 1), "mono8");
   longer.data.resize(longer.data.size() + 100);
   EXPECT_NE(message(longer).find("more than step x height"), std::string::npos) << message(longer);
   // A 16-bit row that ends in the middle of a sample.
-  sensor_msgs::Image odd = wrap(randomPixels(CV_16UC1, 1), "mono16");
+  sensor_msgs::Image odd = imageMessage(randomPixels(CV_16UC1, 1), "mono16");
   odd.step = 129;
   odd.data.assign(static_cast<std::size_t>(odd.step) * odd.height, 0);
   EXPECT_NE(message(odd).find("16-bit samples"), std::string::npos) << message(odd);
@@ -219,7 +204,7 @@ TEST(ImageEncodings, SizesCvBridgeWouldRefuseOrMissAreMalformed) {
   EXPECT_NE(message(wrapped_size).find("step x height needs 4294967296"), std::string::npos)
       << message(wrapped_size);
   // The converter still works afterwards.
-  EXPECT_EQ(conv.convert(wrap(randomPixels(CV_8UC3, 1), "bgr8")).type(), CV_8UC3);
+  EXPECT_EQ(conv.convert(imageMessage(randomPixels(CV_8UC3, 1), "bgr8")).type(), CV_8UC3);
 }
 
 TEST(ImageEncodings, TinyBayerAndColourImagesConvert) {
@@ -228,8 +213,8 @@ TEST(ImageEncodings, TinyBayerAndColourImagesConvert) {
     const cv::Mat bayer8(side, side, CV_8UC1, cv::Scalar(90));
     const cv::Mat bayer16(side, side, CV_16UC1, cv::Scalar(900));
     const cv::Mat rgba16(side, side, CV_16UC4, cv::Scalar::all(900));
-    EXPECT_EQ(conv.convert(wrap(bayer8, "bayer_rggb8")).type(), CV_8UC3) << side;
-    EXPECT_EQ(conv.convert(wrap(bayer16, "bayer_gbrg16")).type(), CV_8UC3) << side;
-    EXPECT_EQ(conv.convert(wrap(rgba16, "rgba16")).type(), CV_8UC3) << side;
+    EXPECT_EQ(conv.convert(imageMessage(bayer8, "bayer_rggb8")).type(), CV_8UC3) << side;
+    EXPECT_EQ(conv.convert(imageMessage(bayer16, "bayer_gbrg16")).type(), CV_8UC3) << side;
+    EXPECT_EQ(conv.convert(imageMessage(rgba16, "rgba16")).type(), CV_8UC3) << side;
   }
 }

@@ -22,25 +22,12 @@
 using obstacle_tracker::bridge::CameraGeometry;
 using obstacle_tracker::bridge::FrameConverter;
 using obstacle_tracker::bridge::MalformedImage;
+using obstacle_tracker::testing::imageMessage;
 using obstacle_tracker::bridge::UnsupportedEncoding;
 namespace core = obstacle_tracker::core;
 
 namespace {
 
-sensor_msgs::Image wrap(const cv::Mat& m, const std::string& encoding, bool big_endian = false) {
-  sensor_msgs::Image msg;
-  msg.height = m.rows;
-  msg.width = m.cols;
-  msg.encoding = encoding;
-  msg.is_bigendian = big_endian;
-  msg.step = static_cast<std::uint32_t>(m.cols * m.elemSize());
-  msg.data.resize(static_cast<std::size_t>(msg.step) * m.rows);
-  for (int r = 0; r < m.rows; ++r) std::memcpy(&msg.data[r * msg.step], m.ptr(r), msg.step);
-  if (big_endian && m.depth() == CV_16U) {
-    for (std::size_t i = 0; i + 1 < msg.data.size(); i += 2) std::swap(msg.data[i], msg.data[i + 1]);
-  }
-  return msg;
-}
 
 double maxAbsDiff(const cv::Mat& a, const cv::Mat& b) { return cv::norm(a, b, cv::NORM_INF); }
 
@@ -57,12 +44,12 @@ TEST(ImageConversion, EightBitEncodingsGiveTheSameBgrFrame) {
   const std::vector<std::pair<const cv::Mat*, const char*>> cases = {
       {&bgr, "bgr8"}, {&bgr, "8UC3"}, {&rgb, "rgb8"}, {&bgra, "bgra8"}, {&bgra, "8UC4"}, {&rgba, "rgba8"}};
   for (const auto& c : cases) {
-    const cv::Mat& out = conv.convert(wrap(*c.first, c.second));
+    const cv::Mat& out = conv.convert(imageMessage(*c.first, c.second));
     ASSERT_EQ(out.type(), CV_8UC3) << c.second;
     EXPECT_EQ(maxAbsDiff(out, bgr), 0.0) << c.second;
   }
   for (const char* enc : {"mono8", "8UC1"}) {
-    const cv::Mat& out = conv.convert(wrap(grey, enc));
+    const cv::Mat& out = conv.convert(imageMessage(grey, enc));
     ASSERT_EQ(out.type(), CV_8UC1) << enc;
     EXPECT_EQ(maxAbsDiff(out, grey), 0.0) << enc;
   }
@@ -71,7 +58,7 @@ TEST(ImageConversion, EightBitEncodingsGiveTheSameBgrFrame) {
 TEST(ImageConversion, ResultDoesNotAliasTheMessage) {
   const cv::Mat bgr = obstacle_tracker::testing::skyFrame(0, 32, 24);
   FrameConverter conv;
-  sensor_msgs::Image msg = wrap(bgr, "bgr8");
+  sensor_msgs::Image msg = imageMessage(bgr, "bgr8");
   const cv::Mat& out = conv.convert(msg);
   const cv::Mat copy = out.clone();
   std::fill(msg.data.begin(), msg.data.end(), 0);
@@ -98,7 +85,7 @@ TEST(ImageConversion, Mono16IsStretchedBetweenPercentiles) {
   conv.stretch().setPercentiles(0.0, 100.0);
   for (bool big_endian : {false, true}) {
     for (const char* enc : {"mono16", "16UC1"}) {
-      const cv::Mat& out = conv.convert(wrap(m16, enc, big_endian));
+      const cv::Mat& out = conv.convert(imageMessage(m16, enc, big_endian));
       ASSERT_EQ(out.type(), CV_8UC1);
       EXPECT_EQ(conv.stretch().lastLow(), 1000);
       EXPECT_EQ(conv.stretch().lastHigh(), 1255);
@@ -126,7 +113,7 @@ TEST(ImageConversion, NodeletAndToolsStretchSixteenBitAlike) {
       frame.at<std::uint16_t>(3, 3) = 65535;
       for (bool big_endian : {false, true}) {
         if (big_endian && i % 5 != 0) continue;  // a few big-endian messages on the way
-        const cv::Mat& from_message = nodelet.convert(wrap(frame, layout.second, big_endian));
+        const cv::Mat& from_message = nodelet.convert(imageMessage(frame, layout.second, big_endian));
         const cv::Mat& from_file = tools.convert(frame);
         ASSERT_EQ(from_message.type(), from_file.type()) << layout.second;
         ASSERT_EQ(maxAbsDiff(from_message, from_file), 0.0) << layout.second << " frame " << i;
@@ -153,7 +140,7 @@ TEST(ImageConversion, BayerPatternsDemosaicToTheRightColour) {
         mosaic.at<uchar>(r, col) = value(which);
       }
     }
-    const cv::Mat& out = conv.convert(wrap(mosaic, c.encoding));
+    const cv::Mat& out = conv.convert(imageMessage(mosaic, c.encoding));
     ASSERT_EQ(out.type(), CV_8UC3);
     const cv::Vec3b centre = out.at<cv::Vec3b>(16, 16);
     for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(centre[ch], bgr[ch], 2) << c.encoding << " channel " << ch;
@@ -161,20 +148,20 @@ TEST(ImageConversion, BayerPatternsDemosaicToTheRightColour) {
   // 16-bit Bayer: demosaiced, then stretched to 8 bits.
   cv::Mat mosaic16(32, 32, CV_16UC1);
   cv::randu(mosaic16, 0, 4096);
-  const cv::Mat& out16 = conv.convert(wrap(mosaic16, "bayer_rggb16"));
+  const cv::Mat& out16 = conv.convert(imageMessage(mosaic16, "bayer_rggb16"));
   EXPECT_EQ(out16.type(), CV_8UC3);
 }
 
 TEST(ImageConversion, Yuv422AndSixteenBitColour) {
   cv::Mat uyvy(8, 8, CV_8UC2, cv::Scalar(128, 200));  // neutral chroma, luma 200
   FrameConverter conv;
-  const cv::Mat& out = conv.convert(wrap(uyvy, "yuv422"));
+  const cv::Mat& out = conv.convert(imageMessage(uyvy, "yuv422"));
   ASSERT_EQ(out.type(), CV_8UC3);
   // BT.601 video range: Y = 200 is (200 - 16) * 255 / 219 = 214 on every channel.
   EXPECT_NEAR(out.at<cv::Vec3b>(4, 4)[1], 214, 2);
   cv::Mat rgb16(8, 8, CV_16UC3, cv::Scalar(100, 2000, 4000));
   rgb16(cv::Rect(0, 0, 4, 8)).setTo(cv::Scalar(0, 0, 0));
-  const cv::Mat& out16 = conv.convert(wrap(rgb16, "rgb16"));
+  const cv::Mat& out16 = conv.convert(imageMessage(rgb16, "rgb16"));
   ASSERT_EQ(out16.type(), CV_8UC3);
   EXPECT_GT(out16.at<cv::Vec3b>(4, 6)[0], out16.at<cv::Vec3b>(4, 6)[2]);  // B = 4000 (third in RGB) is channel 0 of BGR
 }
@@ -184,7 +171,7 @@ TEST(ImageConversion, UnsupportedEncodingsAreRefusedByName) {
   cv::Mat f32(4, 4, CV_32FC3, cv::Scalar(0.5, 0.5, 0.5));
   for (const char* enc : {"32FC3", "16SC1", "64FC1", "garbage", ""}) {
     try {
-      conv.convert(wrap(f32, enc));
+      conv.convert(imageMessage(f32, enc));
       FAIL() << "accepted " << enc;
     } catch (const UnsupportedEncoding& e) {
       EXPECT_NE(std::string(e.what()).find(std::string("'") + enc + "'"), std::string::npos) << e.what();
@@ -196,7 +183,7 @@ TEST(ImageConversion, UnsupportedEncodingsAreRefusedByName) {
 
 TEST(ImageConversion, MalformedMessagesNeverReadOutside) {
   FrameConverter conv;
-  sensor_msgs::Image msg = wrap(obstacle_tracker::testing::skyFrame(0, 16, 16), "bgr8");
+  sensor_msgs::Image msg = imageMessage(obstacle_tracker::testing::skyFrame(0, 16, 16), "bgr8");
   sensor_msgs::Image short_data = msg;
   short_data.data.resize(msg.data.size() - 1);
   EXPECT_THROW(conv.convert(short_data), MalformedImage);
@@ -211,7 +198,7 @@ TEST(ImageConversion, MalformedMessagesNeverReadOutside) {
   huge.height = 4000000000u;
   huge.step = 4000000000u;
   EXPECT_THROW(conv.convert(huge), MalformedImage);
-  sensor_msgs::Image odd_yuv = wrap(cv::Mat(4, 5, CV_8UC2, cv::Scalar(0)), "yuv422");
+  sensor_msgs::Image odd_yuv = imageMessage(cv::Mat(4, 5, CV_8UC2, cv::Scalar(0)), "yuv422");
   EXPECT_THROW(conv.convert(odd_yuv), MalformedImage);
   // The converter still works afterwards.
   EXPECT_EQ(conv.convert(msg).type(), CV_8UC3);
