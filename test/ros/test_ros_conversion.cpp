@@ -28,7 +28,6 @@ namespace core = obstacle_tracker::core;
 
 namespace {
 
-
 double maxAbsDiff(const cv::Mat& a, const cv::Mat& b) { return cv::norm(a, b, cv::NORM_INF); }
 
 }  // namespace
