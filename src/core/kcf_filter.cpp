@@ -79,8 +79,7 @@ void KcfTracker::Impl::gaussianCorrelation(const cv::Mat& xf, float xx, const cv
     const float d = std::max(0.0f, xx + zz - 2.0f * cp[i]);
     kp[i] = d * scale;
   }
-  // cv::exp, whose last bit depends on the CPU's dispatch path (docs/portability.md).
-  cv::exp(k, k);
+  expInPlace(kp, n);  // not cv::exp, whose last bit depends on the CPU (portable_math.h)
   forward(k, kf);
 }
 
