@@ -5,7 +5,7 @@
 # dispatch as it is, limited to the baseline instruction set, and on one thread; reports OTB
 # precision at 20 px and success AUC of each (score_boxes), --init gt and --init auto,
 # whether they agree within 0.02 and whether the outputs are byte-identical; exits non-zero when
-# one does not agree (docs/portability.md: today the dispatch-limited runs do not). Clips:
+# one does not agree (docs/portability.md; CI: scripts/extra_tests.d/45-stable-numbers.sh). Clips:
 # two generated scenes, and antiuav_ir_35, Vase and lasot_airplane-1 (whole clips) from
 # ../shared/sequences when it is there (skipped with a message when not).
 #   OT_BUILD_DIR  the catkin build (default _build)
