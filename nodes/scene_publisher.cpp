@@ -51,104 +51,153 @@ sensor_msgs::CameraInfo pinhole(int width, int height, double focal) {
   return info;
 }
 
+// The node's private parameters (the file comment above says what each does).
+struct PublisherParams {
+  std::string folder, scenario, frame_id;
+  int seed = 1, frames = 0, width = 640, height = 480;
+  bool mono16 = false, loop = false;
+  double rate = 0.0, hfov = 60.0;
+};
+
+PublisherParams readParams(const ros::NodeHandle& pnh) {
+  PublisherParams p;
+  pnh.param("folder", p.folder, std::string());
+  pnh.param("scenario", p.scenario, std::string("demo"));
+  pnh.param("seed", p.seed, p.seed);
+  pnh.param("frames", p.frames, p.frames);
+  pnh.param("width", p.width, p.width);
+  pnh.param("height", p.height, p.height);
+  pnh.param("mono16", p.mono16, p.mono16);
+  pnh.param("rate", p.rate, p.rate);
+  pnh.param("loop", p.loop, p.loop);
+  pnh.param("hfov", p.hfov, p.hfov);
+  pnh.param("frame_id", p.frame_id, std::string("camera_optical"));
+  return p;
+}
+
+// Where the frames come from: a generated scene, or else the image files of a folder.
+struct FrameSource {
+  std::unique_ptr<obstacle_tracker::scene::SceneGenerator> scene;
+  std::vector<std::string> files;
+  int count = 0;
+  double focal = 0.0;  // the scene's; 0 for a folder (camera_info then from ~hfov)
+};
+
+// Opens the folder or the scene of *p and settles p->rate when it is 0. False (after ROS_FATAL)
+// when there is nothing to publish.
+bool openSource(PublisherParams* p, FrameSource* source) {
+  try {
+    if (!p->folder.empty()) {
+      source->files = listImages(p->folder);
+      if (source->files.empty()) {
+        ROS_FATAL("no images in %s (nor in %s/img)", p->folder.c_str(), p->folder.c_str());
+        return false;
+      }
+      source->count = static_cast<int>(source->files.size());
+      if (p->rate <= 0.0) p->rate = 30.0;
+      ROS_INFO("publishing %d images of %s at %.1f Hz", source->count, p->folder.c_str(), p->rate);
+    } else {
+      obstacle_tracker::scene::ScenarioConfig config;
+      config.name = p->scenario;
+      config.seed = static_cast<std::uint64_t>(std::max(0, p->seed));
+      config.frames = p->frames;
+      config.size = cv::Size(p->width, p->height);
+      config.mono16 = p->mono16;
+      source->scene.reset(new obstacle_tracker::scene::SceneGenerator(config));
+      source->count = source->scene->frameCount();
+      source->focal = source->scene->info().focal_length_px;
+      if (p->rate <= 0.0) p->rate = source->scene->fps();
+      ROS_INFO("publishing scenario '%s' (seed %d, %d frames, %dx%d%s) at %.1f Hz", p->scenario.c_str(), p->seed,
+               source->count, p->width, p->height, p->mono16 ? ", mono16" : "", p->rate);
+    }
+  } catch (const std::exception& e) {
+    ROS_FATAL("scene_publisher: %s", e.what());
+    return false;
+  }
+  return true;
+}
+
+// Frame i of the source into *frame; false (warned, throttled) when it is to be skipped.
+bool readFrame(FrameSource& source, int i, cv::Mat* frame) {
+  try {
+    if (source.scene) {
+      source.scene->renderFrame(i, *frame);
+    } else {
+      *frame = cv::imread(source.files[i], cv::IMREAD_UNCHANGED);
+      if (frame->empty()) {
+        ROS_WARN_THROTTLE(5.0, "cannot read %s: skipped", source.files[i].c_str());
+        return false;
+      }
+    }
+  } catch (const std::exception& e) {
+    ROS_ERROR_THROTTLE(5.0, "frame %d: %s", i, e.what());
+    return false;
+  }
+  return true;
+}
+
+// The sensor_msgs encoding of the frame; empty (warned, throttled) for a type not published.
+std::string encodingOf(const cv::Mat& frame, int i) {
+  switch (frame.type()) {
+    case CV_8UC1: return sensor_msgs::image_encodings::MONO8;
+    case CV_16UC1: return sensor_msgs::image_encodings::MONO16;
+    case CV_8UC3: return sensor_msgs::image_encodings::BGR8;
+    case CV_8UC4: return sensor_msgs::image_encodings::BGRA8;
+    default:
+      ROS_WARN_THROTTLE(5.0, "frame %d has an image type the demo does not publish: skipped", i);
+      return std::string();
+  }
+}
+
+// `image` and `camera_info` with the same header.
+class FramePublisher {
+ public:
+  FramePublisher(ros::NodeHandle& nh, const std::string& frame_id)
+      : image_pub_(nh.advertise<sensor_msgs::Image>("image", 2)),
+        info_pub_(nh.advertise<sensor_msgs::CameraInfo>("camera_info", 2)),
+        frame_id_(frame_id) {}
+
+  // focal in pixels: the scene's, or when 0 the one of hfov (degrees) across the frame's width.
+  void publish(const cv::Mat& frame, const std::string& encoding, double focal, double hfov) {
+    std_msgs::Header header;
+    header.stamp = ros::Time::now();
+    header.frame_id = frame_id_;
+    header.seq = seq_++;
+    sensor_msgs::ImagePtr image = cv_bridge::CvImage(header, encoding, frame).toImageMsg();
+    const double f = focal > 0.0 ? focal : 0.5 * frame.cols / std::tan(0.5 * hfov * M_PI / 180.0);
+    sensor_msgs::CameraInfo info = pinhole(frame.cols, frame.rows, f);
+    info.header = header;
+    info_pub_.publish(info);
+    image_pub_.publish(image);
+  }
+
+ private:
+  ros::Publisher image_pub_, info_pub_;
+  std::string frame_id_;
+  std::uint32_t seq_ = 0;
+};
+
 }  // namespace
 
 int main(int argc, char** argv) {
   ros::init(argc, argv, "scene_publisher");
   ros::NodeHandle nh, pnh("~");
-  std::string folder, scenario, frame_id;
-  int seed = 1, frames = 0, width = 640, height = 480;
-  bool mono16 = false, loop = false;
-  double rate = 0.0, hfov = 60.0;
-  pnh.param("folder", folder, std::string());
-  pnh.param("scenario", scenario, std::string("demo"));
-  pnh.param("seed", seed, seed);
-  pnh.param("frames", frames, frames);
-  pnh.param("width", width, width);
-  pnh.param("height", height, height);
-  pnh.param("mono16", mono16, mono16);
-  pnh.param("rate", rate, rate);
-  pnh.param("loop", loop, loop);
-  pnh.param("hfov", hfov, hfov);
-  pnh.param("frame_id", frame_id, std::string("camera_optical"));
+  PublisherParams params = readParams(pnh);
+  FrameSource source;
+  if (!openSource(&params, &source)) return 1;
 
-  std::unique_ptr<obstacle_tracker::scene::SceneGenerator> scene;
-  std::vector<std::string> files;
-  int count = 0;
-  double focal = 0.0;
-  try {
-    if (!folder.empty()) {
-      files = listImages(folder);
-      if (files.empty()) {
-        ROS_FATAL("no images in %s (nor in %s/img)", folder.c_str(), folder.c_str());
-        return 1;
-      }
-      count = static_cast<int>(files.size());
-      if (rate <= 0.0) rate = 30.0;
-      ROS_INFO("publishing %d images of %s at %.1f Hz", count, folder.c_str(), rate);
-    } else {
-      obstacle_tracker::scene::ScenarioConfig config;
-      config.name = scenario;
-      config.seed = static_cast<std::uint64_t>(std::max(0, seed));
-      config.frames = frames;
-      config.size = cv::Size(width, height);
-      config.mono16 = mono16;
-      scene.reset(new obstacle_tracker::scene::SceneGenerator(config));
-      count = scene->frameCount();
-      focal = scene->info().focal_length_px;
-      if (rate <= 0.0) rate = scene->fps();
-      ROS_INFO("publishing scenario '%s' (seed %d, %d frames, %dx%d%s) at %.1f Hz", scenario.c_str(), seed,
-               count, width, height, mono16 ? ", mono16" : "", rate);
-    }
-  } catch (const std::exception& e) {
-    ROS_FATAL("scene_publisher: %s", e.what());
-    return 1;
-  }
-
-  ros::Publisher image_pub = nh.advertise<sensor_msgs::Image>("image", 2);
-  ros::Publisher info_pub = nh.advertise<sensor_msgs::CameraInfo>("camera_info", 2);
-  ros::Rate loop_rate(rate);
+  FramePublisher publisher(nh, params.frame_id);
+  ros::Rate loop_rate(params.rate);
   cv::Mat frame;
-  std::uint32_t seq = 0;
   for (int i = 0; ros::ok(); ++i) {
-    if (i == count) {
-      if (!loop) break;
+    if (i == source.count) {
+      if (!params.loop) break;
       i = 0;
     }
-    try {
-      if (scene) {
-        scene->renderFrame(i, frame);
-      } else {
-        frame = cv::imread(files[i], cv::IMREAD_UNCHANGED);
-        if (frame.empty()) {
-          ROS_WARN_THROTTLE(5.0, "cannot read %s: skipped", files[i].c_str());
-          continue;
-        }
-      }
-    } catch (const std::exception& e) {
-      ROS_ERROR_THROTTLE(5.0, "frame %d: %s", i, e.what());
-      continue;
-    }
-    std::string encoding;
-    switch (frame.type()) {
-      case CV_8UC1: encoding = sensor_msgs::image_encodings::MONO8; break;
-      case CV_16UC1: encoding = sensor_msgs::image_encodings::MONO16; break;
-      case CV_8UC3: encoding = sensor_msgs::image_encodings::BGR8; break;
-      case CV_8UC4: encoding = sensor_msgs::image_encodings::BGRA8; break;
-      default:
-        ROS_WARN_THROTTLE(5.0, "frame %d has an image type the demo does not publish: skipped", i);
-        continue;
-    }
-    std_msgs::Header header;
-    header.stamp = ros::Time::now();
-    header.frame_id = frame_id;
-    header.seq = seq++;
-    sensor_msgs::ImagePtr image = cv_bridge::CvImage(header, encoding, frame).toImageMsg();
-    const double f = focal > 0.0 ? focal : 0.5 * frame.cols / std::tan(0.5 * hfov * M_PI / 180.0);
-    sensor_msgs::CameraInfo info = pinhole(frame.cols, frame.rows, f);
-    info.header = header;
-    info_pub.publish(info);
-    image_pub.publish(image);
+    if (!readFrame(source, i, &frame)) continue;
+    const std::string encoding = encodingOf(frame, i);
+    if (encoding.empty()) continue;
+    publisher.publish(frame, encoding, source.focal, params.hfov);
     ros::spinOnce();
     loop_rate.sleep();
   }

@@ -10,11 +10,13 @@
 //  2. AutoInitializer (defaults) over the first N frames: frame of the first confirmed box, its
 //     centre error and IoU, and whether it came within 20 px inside the first second;
 //  3. cue ablation on every sequence: the same, with each cue switched off or added.
+// The parameter variants under test are in src/tools/init_table/variants.cpp.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -27,11 +29,15 @@
 #include <opencv2/saliency.hpp>
 
 #include "command_line.h"
+#include "init_table/variants.h"
 #include "obstacle_tracker/core/saliency.h"
 #include "obstacle_tracker/core/segmentation.h"
 #include "obstacle_tracker/eval/metrics.h"
 
 namespace oc = obstacle_tracker::core;
+using obstacle_tracker::init_table_tool::ablationVariants;
+using obstacle_tracker::init_table_tool::detectorOptions;
+using obstacle_tracker::init_table_tool::Variant;
 
 namespace {
 
@@ -143,197 +149,153 @@ std::string fmtAuto(const AutoResult& r) {
   return buf;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+struct Options {
   std::string data;
   int max_frames = 30;
   double fps = 25.0;
+};
+
+// Reads the command line into *o. Returns nothing when the tool is to run, otherwise the code to
+// exit with (0 after --help, 2 after a usage error; both already printed).
+std::optional<int> parseArgs(int argc, char** argv, Options* o) {
   CLI::App app{"Auto-initialisation on real sequences (OTB layout: DIR/NAME/img/0001.jpg..., "
                "groundtruth_rect.txt): prints Markdown tables of the first-frame detectors, the "
                "AutoInitializer over the first N frames and a cue ablation.",
                "init_table"};
   obstacle_tracker::tools::setToolDefaults(app);
-  app.add_option("--data", data, "folder of OTB-layout sequences")->type_name("DIR")->required();
-  app.add_option("--frames", max_frames, "frames given to the AutoInitializer (at least 1)")->type_name("N")->capture_default_str();
-  app.add_option("--fps", fps, "frame rate of the sequences (\"within the first second\")")
+  app.add_option("--data", o->data, "folder of OTB-layout sequences")->type_name("DIR")->required();
+  app.add_option("--frames", o->max_frames, "frames given to the AutoInitializer (at least 1)")
+      ->type_name("N")
+      ->capture_default_str();
+  app.add_option("--fps", o->fps, "frame rate of the sequences (\"within the first second\")")
       ->type_name("F")
       ->capture_default_str();
-  if (const auto code = obstacle_tracker::tools::parseCommandLine(app, argc, argv)) return *code;
-  if (data.empty()) return obstacle_tracker::tools::usageError(app, "--data must not be empty");
-  if (max_frames < 1) return obstacle_tracker::tools::usageError(app, "--frames must be at least 1");
-  const std::vector<Sequence> seqs = listSequences(data);
-  if (seqs.empty()) {
-    std::fprintf(stderr, "no OTB-layout sequences under %s\n", data.c_str());
-    return 1;
-  }
-  const int first_second = static_cast<int>(std::lround(fps));
+  if (const auto code = obstacle_tracker::tools::parseCommandLine(app, argc, argv)) return code;
+  if (o->data.empty()) return obstacle_tracker::tools::usageError(app, "--data must not be empty");
+  if (o->max_frames < 1) return obstacle_tracker::tools::usageError(app, "--frames must be at least 1");
+  return std::nullopt;
+}
 
-  // Variants of the AutoInitializer for the cue ablation.
-  struct Variant {
-    const char* name;
-    oc::Params p;
-  };
-  std::vector<Variant> variants;
-  {
-    oc::Params d;
-    variants.push_back({"defaults (persistence + motion + local contrast)", d});
-    oc::Params single = d;
-    single.auto_init_frames = 1;
-    single.auto_init_min_motion = 0.0;
-    variants.push_back({"single frame (contrast x MBD, best peak)", single});
-    oc::Params single_mbd = single;
-    single_mbd.auto_init_local_contrast = false;
-    variants.push_back({"single frame, MBD alone at native res", single_mbd});
-    oc::Params persist = d;
-    persist.auto_init_min_motion = 0.0;
-    variants.push_back({"persistence + contrast, no motion", persist});
-    oc::Params no_contrast = d;
-    no_contrast.auto_init_local_contrast = false;
-    variants.push_back({"persistence + motion, MBD alone (no contrast)", no_contrast});
-    oc::Params text = d;
-    text.auto_init_reject_text = !d.auto_init_reject_text;
-    variants.push_back({text.auto_init_reject_text ? "defaults + text-row rejection" : "defaults, no text-row rejection",
-                        text});
-    oc::Params no_static = d;
-    no_static.auto_init_reject_static = false;
-    variants.push_back({"defaults, no still-pixel rejection", no_static});
-    oc::Params shape = d;
-    shape.auto_init_shape_filter = !d.auto_init_shape_filter;
-    variants.push_back({shape.auto_init_shape_filter ? "defaults + line-shape filter" : "defaults, no line-shape filter",
-                        shape});
-    oc::Params horizon = d;
-    horizon.auto_init_horizon_prior = true;
-    variants.push_back({"defaults + horizon prior", horizon});
-    oc::Params border = d;
-    border.reject_border_regions = false;
-    variants.push_back({"defaults, border regions kept", border});
-    for (double m : {2.0, 6.0, 8.0}) {
-      oc::Params mm = d;
-      mm.auto_init_min_motion = m;
-      static std::vector<std::string> names;  // keeps the variant names alive
-      names.reserve(8);
-      names.push_back("defaults, min motion " + std::to_string(static_cast<int>(m)) + " px");
-      variants.push_back({names.back().c_str(), mm});
-    }
-    for (int n : {5, 8, 10, 12, 15}) {
-      if (n == d.auto_init_frames) continue;
-      oc::Params pn = d;
-      pn.auto_init_frames = n;
-      static std::vector<std::string> frame_names;  // keeps the variant names alive
-      frame_names.reserve(8);
-      frame_names.push_back("defaults, " + std::to_string(n) + " frames");
-      variants.push_back({frame_names.back().c_str(), pn});
-    }
-  }
+std::vector<cv::Mat> loadFirstFrames(const Sequence& s, int max_frames) {
+  std::vector<cv::Mat> frames;
+  for (int i = 0; i < max_frames && i < static_cast<int>(s.frames.size()); ++i) frames.push_back(load(s.frames[i]));
+  return frames;
+}
 
-  std::printf("## First frame, one-frame detectors (best-ranked region)\n\n");
-  std::printf("| sequence | size | MBD IoU | MBD centre err (px) | SR IoU | SR centre err (px) |\n|---|---|---|---|---|---|\n");
-  std::vector<std::vector<cv::Mat>> all_frames;
-  oc::SaliencyDetector det;
-  auto sr = cv::saliency::StaticSaliencySpectralResidual::create();
+// The two one-frame detectors of the first table, kept across sequences.
+struct FirstFrameDetectors {
+  oc::SaliencyDetector mbd;
+  cv::Ptr<cv::saliency::StaticSaliencySpectralResidual> spectral_residual =
+      cv::saliency::StaticSaliencySpectralResidual::create();
   oc::RegionExtractor extractor;
   std::vector<oc::SalientRegion> sr_regions;
   oc::Params defaults;
-  for (const Sequence& s : seqs) {
-    std::vector<cv::Mat> frames;
-    for (int i = 0; i < max_frames && i < static_cast<int>(s.frames.size()); ++i) frames.push_back(load(s.frames[i]));
-    all_frames.push_back(frames);
-    const cv::Mat& f0 = frames[0];
-    const auto& ours = det.detect(f0);
+
+  // OpenCV's spectral residual saliency, then the same Otsu / regions step as ours.
+  const std::vector<oc::SalientRegion>& detectSpectralResidual(const cv::Mat& frame) {
     cv::Mat map_f, map_u8;
-    sr->computeSaliency(f0, map_f);
+    spectral_residual->computeSaliency(frame, map_f);
     double mx = 0.0;
     cv::minMaxLoc(map_f, nullptr, &mx);
     map_f.convertTo(map_u8, CV_8U, mx > 0 ? 255.0 / mx : 0.0);
     oc::RegionExtractor::Geometry g;
-    g.frame_area = static_cast<double>(f0.total());
+    g.frame_area = static_cast<double>(frame.total());
     extractor.extract(map_u8, g, defaults, sr_regions);
-    auto cell = [&](const std::vector<oc::SalientRegion>& r, bool err) {
-      char buf[32];
-      if (r.empty()) return std::string("none");
-      std::snprintf(buf, sizeof buf, "%.2f", err ? centreError(r[0].box, s.gt[0]) : iou(r[0].box, s.gt[0]));
-      if (err) std::snprintf(buf, sizeof buf, "%.0f", centreError(r[0].box, s.gt[0]));
-      return std::string(buf);
-    };
+    return sr_regions;
+  }
+};
+
+// A table cell for the best-ranked region: its IoU, or its centre error when `err`.
+std::string bestRegionCell(const std::vector<oc::SalientRegion>& r, const cv::Rect2f& gt, bool err) {
+  char buf[32];
+  if (r.empty()) return std::string("none");
+  if (err) {
+    std::snprintf(buf, sizeof buf, "%.0f", centreError(r[0].box, gt));
+  } else {
+    std::snprintf(buf, sizeof buf, "%.2f", iou(r[0].box, gt));
+  }
+  return std::string(buf);
+}
+
+// The first-frame table. Loads the first frames of every sequence on the way (returned, one
+// list per sequence), so the rows of the sequences read so far are out when a frame cannot be read.
+std::vector<std::vector<cv::Mat>> printFirstFrameTable(const std::vector<Sequence>& seqs, int max_frames) {
+  std::printf("## First frame, one-frame detectors (best-ranked region)\n\n");
+  std::printf("| sequence | size | MBD IoU | MBD centre err (px) | SR IoU | SR centre err (px) |\n|---|---|---|---|---|---|\n");
+  std::vector<std::vector<cv::Mat>> all_frames;
+  FirstFrameDetectors detectors;
+  for (const Sequence& s : seqs) {
+    all_frames.push_back(loadFirstFrames(s, max_frames));
+    const cv::Mat& f0 = all_frames.back()[0];
+    const auto& ours = detectors.mbd.detect(f0);
+    const auto& sr = detectors.detectSpectralResidual(f0);
     std::printf("| %s | %dx%d%s | %s | %s | %s | %s |\n", s.name.c_str(), f0.cols, f0.rows,
-                f0.channels() == 1 ? " grey" : "", cell(ours, false).c_str(), cell(ours, true).c_str(),
-                cell(sr_regions, false).c_str(), cell(sr_regions, true).c_str());
+                f0.channels() == 1 ? " grey" : "", bestRegionCell(ours, s.gt[0], false).c_str(),
+                bestRegionCell(ours, s.gt[0], true).c_str(), bestRegionCell(sr, s.gt[0], false).c_str(),
+                bestRegionCell(sr, s.gt[0], true).c_str());
   }
+  return all_frames;
+}
 
-  // One-frame detector options (MB+ terms, median, map size): best region against the ground
-  // truth on every 5th of the first frames of every sequence.
-  {
-    struct Option {
-      const char* name;
-      oc::Params p;
-    };
-    std::vector<Option> options;
-    oc::Params d;
-    options.push_back({"defaults (FastMBD, 300 px, no median, no MB+ terms)", d});
-    oc::Params med = d;
-    med.saliency_median = 5;
-    options.push_back({"+ 5x5 median (MB+ reference)", med});
-    oc::Params bg = d;
-    bg.saliency_backgroundness = true;
-    options.push_back({"+ backgroundness", bg});
-    oc::Params pp = d;
-    pp.saliency_postprocess = true;
-    options.push_back({"+ smoothing and contrast stretch", pp});
-    oc::Params mbplus = d;
-    mbplus.saliency_median = 5;
-    mbplus.saliency_backgroundness = true;
-    mbplus.saliency_postprocess = true;
-    options.push_back({"MB+ (median + backgroundness + post-processing)", mbplus});
-    oc::Params big = d;
-    big.saliency_max_side = 640;
-    options.push_back({"max side 640 px", big});
-    oc::Params border = d;
-    border.reject_border_regions = false;
-    options.push_back({"border regions kept", border});
-    oc::Params by_area = d;
-    by_area.saliency_rank_by_area = true;
-    options.push_back({"ranked by area (the paper) instead of saliency mass", by_area});
-    std::printf("\n## One-frame detector options: best-ranked region on frames 1, 6, 11, ... of the first %d\n\n",
-                max_frames);
-    std::printf("| option | mean IoU (all) | centre <= 20 px (all) | mean IoU (non-flying) | centre <= 20 px (flying) |\n");
-    std::printf("|---|---|---|---|---|\n");
-    for (const Option& o : options) {
-      oc::SaliencyDetector od(o.p);
-      double iou_all = 0.0, iou_nf = 0.0;
-      int n_all = 0, n_nf = 0, hit_all = 0, hit_fly = 0, n_fly = 0;
-      for (size_t k = 0; k < seqs.size(); ++k)
-        for (size_t i = 0; i < all_frames[k].size(); i += 5) {
-          const auto& r = od.detect(all_frames[k][i]);
-          const float v = r.empty() ? 0.0f : iou(r[0].box, seqs[k].gt[i]);
-          const bool hit = !r.empty() && centreError(r[0].box, seqs[k].gt[i]) <= 20.0f;
-          iou_all += v;
-          ++n_all;
-          hit_all += hit;
-          if (isFlying(seqs[k].name)) {
-            ++n_fly;
-            hit_fly += hit;
-          } else {
-            iou_nf += v;
-            ++n_nf;
-          }
-        }
-      std::printf("| %s | %.3f | %d/%d | %.3f | %d/%d |\n", o.name, n_all ? iou_all / n_all : 0.0, hit_all, n_all,
-                  n_nf ? iou_nf / n_nf : 0.0, hit_fly, n_fly);
+// One row of the detector-options table: the best-ranked region against the ground truth on every 5th frame.
+void printDetectorOptionRow(const Variant& o, const std::vector<Sequence>& seqs,
+                            const std::vector<std::vector<cv::Mat>>& all_frames) {
+  oc::SaliencyDetector od(o.p);
+  double iou_all = 0.0, iou_nf = 0.0;
+  int n_all = 0, n_nf = 0, hit_all = 0, hit_fly = 0, n_fly = 0;
+  for (size_t k = 0; k < seqs.size(); ++k)
+    for (size_t i = 0; i < all_frames[k].size(); i += 5) {
+      const auto& r = od.detect(all_frames[k][i]);
+      const float v = r.empty() ? 0.0f : iou(r[0].box, seqs[k].gt[i]);
+      const bool hit = !r.empty() && centreError(r[0].box, seqs[k].gt[i]) <= 20.0f;
+      iou_all += v;
+      ++n_all;
+      hit_all += hit;
+      if (isFlying(seqs[k].name)) {
+        ++n_fly;
+        hit_fly += hit;
+      } else {
+        iou_nf += v;
+        ++n_nf;
+      }
     }
-  }
+  std::printf("| %s | %.3f | %d/%d | %.3f | %d/%d |\n", o.name.c_str(), n_all ? iou_all / n_all : 0.0, hit_all, n_all,
+              n_nf ? iou_nf / n_nf : 0.0, hit_fly, n_fly);
+}
 
+// The detector-options table: each option on frames 1, 6, 11, ... of every sequence.
+void printDetectorOptionsTable(const std::vector<Sequence>& seqs,
+                               const std::vector<std::vector<cv::Mat>>& all_frames, int max_frames) {
+  const std::vector<Variant> options = detectorOptions();
+  std::printf("\n## One-frame detector options: best-ranked region on frames 1, 6, 11, ... of the first %d\n\n",
+              max_frames);
+  std::printf("| option | mean IoU (all) | centre <= 20 px (all) | mean IoU (non-flying) | centre <= 20 px (flying) |\n");
+  std::printf("|---|---|---|---|---|\n");
+  for (const Variant& o : options) printDetectorOptionRow(o, seqs, all_frames);
+}
+
+// A first box within 20 px inside the first second.
+bool isEarlyHit(const AutoResult& r, int first_second) {
+  return r.frame > 0 && r.frame <= first_second && r.error <= 20.0f;
+}
+
+int countFlying(const std::vector<Sequence>& seqs) {
+  int flying = 0;
+  for (const Sequence& s : seqs) flying += isFlying(s.name);
+  return flying;
+}
+
+// The AutoInitializer table: the given (default) parameters on every sequence.
+void printAutoInitTable(const std::vector<Sequence>& seqs, const std::vector<std::vector<cv::Mat>>& all_frames,
+                        const oc::Params& p, int max_frames, int first_second) {
   std::printf("\n## AutoInitializer (defaults), first %d frames\n\n", max_frames);
   std::printf("| sequence | flying | first confirmed box | centre err (px) | IoU | frame | within 20 px in 1st second | ms/frame |\n");
   std::printf("|---|---|---|---|---|---|---|---|\n");
-  int flying = 0, flying_ok = 0;
+  int flying_ok = 0;
   for (size_t k = 0; k < seqs.size(); ++k) {
-    const AutoResult r = runAuto(seqs[k], all_frames[k], variants[0].p);
-    const bool ok = r.frame > 0 && r.frame <= first_second && r.error <= 20.0f;
-    if (isFlying(seqs[k].name)) {
-      ++flying;
-      flying_ok += ok;
-    }
+    const AutoResult r = runAuto(seqs[k], all_frames[k], p);
+    const bool ok = isEarlyHit(r, first_second);
+    if (isFlying(seqs[k].name)) flying_ok += ok;
     char err[32] = "-", io[32] = "-", fr[32] = "-";
     if (r.frame > 0) {
       std::snprintf(err, sizeof err, "%.1f", r.error);
@@ -345,23 +307,46 @@ int main(int argc, char** argv) {
                 ok ? "**yes**" : "no", r.ms);
   }
   std::printf("\nFlying clips with a first box within 20 px inside the first %d frames: %d of %d\n",
-              first_second, flying_ok, flying);
+              first_second, flying_ok, countFlying(seqs));
+}
 
+// The cue-ablation table: every variant on every sequence, and how many flying clips it gets early.
+void printCueAblationTable(const std::vector<Sequence>& seqs, const std::vector<std::vector<cv::Mat>>& all_frames,
+                           const std::vector<Variant>& variants, int first_second) {
   std::printf("\n## Cue ablation: centre error of the first confirmed box @ its frame\n\n| variant |");
   for (const Sequence& s : seqs) std::printf(" %s |", s.name.c_str());
   std::printf(" flying ok |\n|---|");
   for (size_t k = 0; k <= seqs.size(); ++k) std::printf("---|");
   std::printf("\n");
+  const int flying = countFlying(seqs);
   for (const Variant& v : variants) {
-    std::printf("| %s |", v.name);
+    std::printf("| %s |", v.name.c_str());
     int ok = 0;
     for (size_t k = 0; k < seqs.size(); ++k) {
       const AutoResult r = runAuto(seqs[k], all_frames[k], v.p);
-      const bool good = r.frame > 0 && r.frame <= first_second && r.error <= 20.0f;
+      const bool good = isEarlyHit(r, first_second);
       if (isFlying(seqs[k].name)) ok += good;
       std::printf(" %s%s%s |", good ? "**" : "", fmtAuto(r).c_str(), good ? "**" : "");
     }
     std::printf(" %d/%d |\n", ok, flying);
   }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options opt;
+  if (const auto code = parseArgs(argc, argv, &opt)) return *code;
+  const std::vector<Sequence> seqs = listSequences(opt.data);
+  if (seqs.empty()) {
+    std::fprintf(stderr, "no OTB-layout sequences under %s\n", opt.data.c_str());
+    return 1;
+  }
+  const int first_second = static_cast<int>(std::lround(opt.fps));
+  const std::vector<Variant> variants = ablationVariants();
+  const std::vector<std::vector<cv::Mat>> all_frames = printFirstFrameTable(seqs, opt.max_frames);
+  printDetectorOptionsTable(seqs, all_frames, opt.max_frames);
+  printAutoInitTable(seqs, all_frames, variants[0].p, opt.max_frames, first_second);
+  printCueAblationTable(seqs, all_frames, variants, first_second);
   return 0;
 }

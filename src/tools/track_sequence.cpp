@@ -145,139 +145,207 @@ void progress(int done, int total, double core_seconds) {
   std::fflush(stderr);
 }
 
-int run(const Options& opt) {
+core::Params loadParams(const Options& opt) {
   core::Params params;
   if (!opt.params_file.empty()) {
     std::vector<std::string> messages;
     params = core::loadParamsFile(opt.params_file, &messages);  // throws runtime_error
     for (const auto& m : messages) std::cerr << "track_sequence: " << opt.params_file << ": " << m << "\n";
   }
+  return params;
+}
+
+// Opens --output (creating its folder) into *file; standard output when none is given.
+std::ostream& openOutput(const std::string& output, std::ofstream* file) {
+  if (output.empty()) return std::cout;
+  const fs::path parent = fs::path(output).parent_path();
+  std::error_code ec;
+  if (!parent.empty()) fs::create_directories(parent, ec);
+  file->open(output);
+  if (!*file) throw std::runtime_error("cannot write '" + output + "'");
+  return *file;
+}
+
+// --overlay: the frames with the boxes drawn, into a video or as numbered JPEGs in a folder.
+class OverlayOutput {
+ public:
+  // Creates the folder now (a video is opened at the first frame, when its size is known).
+  explicit OverlayOutput(const std::string& target) : target_(target), video_(isVideoPath(target)) {
+    if (!video_) {
+      std::error_code ec;
+      fs::create_directories(target_, ec);
+      if (!fs::is_directory(target_)) throw std::runtime_error("cannot create overlay folder '" + target_ + "'");
+    }
+  }
+
+  void write(const cv::Mat& frame, const std::vector<core::Obstacle>* obs, const cv::Rect2f& gt, int index,
+             double fps) {
+    if (frame.channels() == 1) {
+      cv::cvtColor(frame, canvas_, cv::COLOR_GRAY2BGR);
+    } else {
+      frame.copyTo(canvas_);
+    }
+    static const std::vector<core::Obstacle> kNone;
+    drawOverlay(canvas_, obs != nullptr ? *obs : kNone, gt, index);
+    if (video_) {
+      if (!writer_.isOpened()) openVideo(fps);
+      writer_.write(canvas_);
+    } else {
+      char name[32];
+      std::snprintf(name, sizeof(name), "%06d.jpg", index + 1);
+      const std::string path = (fs::path(target_) / name).string();
+      if (!cv::imwrite(path, canvas_)) throw std::runtime_error("cannot write '" + path + "'");
+    }
+  }
+
+ private:
+  void openVideo(double fps) {
+    const std::string ext = fs::path(target_).extension().string();
+    const int fourcc = (ext == ".avi" || ext == ".AVI") ? cv::VideoWriter::fourcc('M', 'J', 'P', 'G')
+                                                        : cv::VideoWriter::fourcc('m', 'p', '4', 'v');
+    if (!writer_.open(target_, fourcc, fps, canvas_.size())) {
+      throw std::runtime_error("cannot write overlay video '" + target_ + "'");
+    }
+  }
+
+  std::string target_;
+  bool video_;
+  cv::VideoWriter writer_;
+  cv::Mat canvas_;
+};
+
+// Runs the pipeline frame by frame and times only its calls (Pipeline::process / startTrack).
+// With a start box (--init gt or x,y,w,h) nothing runs until the first frame where it is present.
+class TimedTracker {
+ public:
+  TimedTracker(const core::Params& params, const Options& opt, const eval::Sequence& seq)
+      : pipeline_(params), opt_(opt), seq_(seq), started_(opt.init == "auto") {}
+
+  // The obstacles of this frame; nullptr while the start box has not been present yet.
+  const std::vector<core::Obstacle>* track(const cv::Mat& frame, double stamp, int index) {
+    const std::vector<core::Obstacle>* obs = nullptr;
+    const auto t0 = Clock::now();
+    if (!started_) {
+      const cv::Rect2f box = opt_.have_box ? opt_.box : seq_.groundTruthAt(index);
+      if (eval::isPresent(box)) {
+        obs = &pipeline_.startTrack(frame, stamp, box);
+        started_ = true;
+      }
+    } else {
+      obs = &pipeline_.process(frame, stamp);
+    }
+    const auto t1 = Clock::now();
+    if (obs != nullptr) {
+      core_seconds_ += std::chrono::duration<double>(t1 - t0).count();
+      ++core_frames_;
+    }
+    return obs;
+  }
+
+  bool started() const { return started_; }
+  double coreSeconds() const { return core_seconds_; }
+  int coreFrames() const { return core_frames_; }
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  core::Pipeline pipeline_;
+  const Options& opt_;
+  const eval::Sequence& seq_;
+  bool started_;
+  double core_seconds_ = 0.0;
+  int core_frames_ = 0;
+};
+
+// The first obstacle being tracked or re-detected; nullptr when there is none.
+const core::Obstacle* mainObstacle(const std::vector<core::Obstacle>* obs) {
+  if (obs == nullptr) return nullptr;
+  for (const auto& o : *obs) {
+    if (o.state == core::TrackState::kTracking || o.state == core::TrackState::kRedetecting) return &o;
+  }
+  return nullptr;
+}
+
+// One line per frame: x,y,w,h,confidence,time_to_contact of the main obstacle, or
+// 0,0,0,0,0,inf when there is none.
+void writeFrameLine(std::ostream& out, const core::Obstacle* obstacle, const std::string& output) {
+  char line[160];
+  if (obstacle != nullptr) {
+    char ttc[32] = "inf";
+    if (std::isfinite(obstacle->time_to_contact)) std::snprintf(ttc, sizeof(ttc), "%.3f", obstacle->time_to_contact);
+    std::snprintf(line, sizeof(line), "%.2f,%.2f,%.2f,%.2f,%.3f,%s\n", obstacle->box.x, obstacle->box.y,
+                  obstacle->box.width, obstacle->box.height, obstacle->confidence, ttc);
+  } else {
+    std::snprintf(line, sizeof(line), "0,0,0,0,0,inf\n");
+  }
+  out << line;
+  if (!out) throw std::runtime_error("write error on '" + (output.empty() ? "stdout" : output) + "'");
+}
+
+// The progress bar on standard error, redrawn at most every 100 ms; off with --quiet or when
+// standard error is not a terminal.
+class ProgressBar {
+ public:
+  ProgressBar(bool enabled, int total) : enabled_(enabled), total_(total), last_(Clock::now()) {}
+
+  void update(int done, double core_seconds) {
+    if (enabled_ && (Clock::now() - last_ > std::chrono::milliseconds(100))) {
+      progress(done, total_, core_seconds);
+      last_ = Clock::now();
+    }
+  }
+
+  void finish(int done, double core_seconds) {
+    if (!enabled_) return;
+    progress(done, total_, core_seconds);
+    std::fprintf(stderr, "\n");
+  }
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  bool enabled_;
+  int total_;
+  Clock::time_point last_;
+};
+
+void printSummary(const eval::Sequence& seq, int frames, const TimedTracker& tracker) {
+  const double core_seconds = tracker.coreSeconds();
+  const int core_frames = tracker.coreFrames();
+  const double core_fps = core_seconds > 0.0 ? core_frames / core_seconds : 0.0;
+  std::fprintf(stderr, "track_sequence: %s: %d frames, core %.1f fps (%.2f ms/frame, decoding excluded)\n",
+               seq.name().c_str(), frames, core_fps, core_frames > 0 ? 1000.0 * core_seconds / core_frames : 0.0);
+}
+
+int run(const Options& opt) {
+  const core::Params params = loadParams(opt);
   eval::Sequence seq(opt.input, opt.gt_file);
   if (opt.init == "gt" && !seq.hasGroundTruth()) {
     throw UsageError("--init gt but '" + opt.input + "' has no ground truth (give --gt FILE)");
   }
-
   std::ofstream file;
-  std::ostream* out = &std::cout;
-  if (!opt.output.empty()) {
-    const fs::path parent = fs::path(opt.output).parent_path();
-    std::error_code ec;
-    if (!parent.empty()) fs::create_directories(parent, ec);
-    file.open(opt.output);
-    if (!file) throw std::runtime_error("cannot write '" + opt.output + "'");
-    out = &file;
-  }
+  std::ostream& out = openOutput(opt.output, &file);
+  std::optional<OverlayOutput> overlay;
+  if (!opt.overlay.empty()) overlay.emplace(opt.overlay);
 
-  cv::VideoWriter writer;
-  const bool overlay_video = !opt.overlay.empty() && isVideoPath(opt.overlay);
-  if (!opt.overlay.empty() && !overlay_video) {
-    std::error_code ec;
-    fs::create_directories(opt.overlay, ec);
-    if (!fs::is_directory(opt.overlay)) throw std::runtime_error("cannot create overlay folder '" + opt.overlay + "'");
-  }
-
-  core::Pipeline pipeline(params);
+  TimedTracker tracker(params, opt, seq);
   eval::FrameConverter converter;  // the nodelet's stretch for 16-bit frames
-  const bool show_progress = !opt.quiet && isatty(fileno(stderr));
-  const int total = seq.frameCount();
+  ProgressBar progress_bar(!opt.quiet && isatty(fileno(stderr)), seq.frameCount());
   const double fps = seq.fps();
-
-  cv::Mat raw, canvas;
-  double core_seconds = 0.0;
-  int index = 0, core_frames = 0;
-  bool started = opt.init == "auto";
-  char line[160];
-  using Clock = std::chrono::steady_clock;
-  auto last_progress = Clock::now();
+  cv::Mat raw;
+  int index = 0;
   while (seq.read(raw)) {
     const cv::Mat& frame = converter.convert(raw);
-    const double stamp = index / fps;
-    const std::vector<core::Obstacle>* obs = nullptr;
-    const auto t0 = Clock::now();
-    if (!started) {
-      cv::Rect2f box;
-      if (opt.have_box) {
-        box = opt.box;
-      } else {
-        box = seq.groundTruthAt(index);
-      }
-      if (eval::isPresent(box)) {
-        obs = &pipeline.startTrack(frame, stamp, box);
-        started = true;
-      }
-    } else {
-      obs = &pipeline.process(frame, stamp);
-    }
-    const auto t1 = Clock::now();
-    if (obs != nullptr) {
-      core_seconds += std::chrono::duration<double>(t1 - t0).count();
-      ++core_frames;
-    }
-
-    const core::Obstacle* main = nullptr;
-    if (obs != nullptr) {
-      for (const auto& o : *obs) {
-        if (o.state == core::TrackState::kTracking || o.state == core::TrackState::kRedetecting) {
-          main = &o;
-          break;
-        }
-      }
-    }
-    if (main != nullptr) {
-      char ttc[32] = "inf";
-      if (std::isfinite(main->time_to_contact)) std::snprintf(ttc, sizeof(ttc), "%.3f", main->time_to_contact);
-      std::snprintf(line, sizeof(line), "%.2f,%.2f,%.2f,%.2f,%.3f,%s\n", main->box.x, main->box.y, main->box.width,
-                    main->box.height, main->confidence, ttc);
-    } else {
-      std::snprintf(line, sizeof(line), "0,0,0,0,0,inf\n");
-    }
-    *out << line;
-    if (!*out) throw std::runtime_error("write error on '" + (opt.output.empty() ? "stdout" : opt.output) + "'");
-
-    if (!opt.overlay.empty()) {
-      if (frame.channels() == 1) {
-        cv::cvtColor(frame, canvas, cv::COLOR_GRAY2BGR);
-      } else {
-        frame.copyTo(canvas);
-      }
-      static const std::vector<core::Obstacle> kNone;
-      drawOverlay(canvas, obs != nullptr ? *obs : kNone, seq.groundTruthAt(index), index);
-      if (overlay_video) {
-        if (!writer.isOpened()) {
-          const std::string ext = fs::path(opt.overlay).extension().string();
-          const int fourcc = (ext == ".avi" || ext == ".AVI") ? cv::VideoWriter::fourcc('M', 'J', 'P', 'G')
-                                                              : cv::VideoWriter::fourcc('m', 'p', '4', 'v');
-          if (!writer.open(opt.overlay, fourcc, fps, canvas.size())) {
-            throw std::runtime_error("cannot write overlay video '" + opt.overlay + "'");
-          }
-        }
-        writer.write(canvas);
-      } else {
-        char name[32];
-        std::snprintf(name, sizeof(name), "%06d.jpg", index + 1);
-        const std::string path = (fs::path(opt.overlay) / name).string();
-        if (!cv::imwrite(path, canvas)) throw std::runtime_error("cannot write '" + path + "'");
-      }
-    }
+    const std::vector<core::Obstacle>* obs = tracker.track(frame, index / fps, index);
+    writeFrameLine(out, mainObstacle(obs), opt.output);
+    if (overlay) overlay->write(frame, obs, seq.groundTruthAt(index), index, fps);
     ++index;
-    if (show_progress && (Clock::now() - last_progress > std::chrono::milliseconds(100))) {
-      progress(index, total, core_seconds);
-      last_progress = Clock::now();
-    }
+    progress_bar.update(index, tracker.coreSeconds());
   }
-  if (show_progress) {
-    progress(index, total, core_seconds);
-    std::fprintf(stderr, "\n");
-  }
+  progress_bar.finish(index, tracker.coreSeconds());
   if (index == 0) throw std::runtime_error("no frame could be read from '" + opt.input + "'");
-  if (opt.init != "auto" && !started) {
+  if (opt.init != "auto" && !tracker.started()) {
     std::cerr << "track_sequence: warning: the start box was never present; nothing was tracked\n";
   }
-  if (!opt.quiet) {
-    const double core_fps = core_seconds > 0.0 ? core_frames / core_seconds : 0.0;
-    std::fprintf(stderr, "track_sequence: %s: %d frames, core %.1f fps (%.2f ms/frame, decoding excluded)\n",
-                 seq.name().c_str(), index, core_fps, core_frames > 0 ? 1000.0 * core_seconds / core_frames : 0.0);
-  }
+  if (!opt.quiet) printSummary(seq, index, tracker);
   return 0;
 }
 
