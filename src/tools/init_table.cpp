@@ -2,7 +2,8 @@
 //
 // init_table --data DIR [--frames N] [--fps F]
 //
-// Auto-initialisation on real sequences (OTB layout: DIR/NAME/img/0001.jpg..., groundtruth_rect.txt).
+// Auto-initialisation on real sequences: the sequence folders under DIR, read as evaluate reads
+// them (eval::Sequence, eval::FrameConverter).
 // Prints Markdown tables:
 //  1. first frame, one-frame detectors: IoU and centre error of the best region against the
 //     ground truth for our SaliencyDetector (FastMBD + Otsu + regions) and for OpenCV's spectral
@@ -11,18 +12,15 @@
 //     centre error and IoU, and whether it came within 20 px inside the first second;
 //  3. cue ablation on every sequence: the same, with each cue switched off or added.
 // The parameter variants under test are in src/tools/init_table/variants.cpp.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
+#include <filesystem>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <vector>
-
-#include <dirent.h>
-#include <sys/stat.h>
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -33,8 +31,11 @@
 #include "obstacle_tracker/core/saliency.h"
 #include "obstacle_tracker/core/segmentation.h"
 #include "obstacle_tracker/eval/metrics.h"
+#include "obstacle_tracker/eval/sequence.h"
 
+namespace fs = std::filesystem;
 namespace oc = obstacle_tracker::core;
+namespace ev = obstacle_tracker::eval;
 using obstacle_tracker::init_table_tool::ablationVariants;
 using obstacle_tracker::init_table_tool::detectorOptions;
 using obstacle_tracker::init_table_tool::Variant;
@@ -44,50 +45,27 @@ namespace {
 struct Sequence {
   std::string name, dir;
   std::vector<cv::Rect2f> gt;
-  std::vector<std::string> frames;
 };
 
-bool isDir(const std::string& p) {
-  struct stat st;
-  return stat(p.c_str(), &st) == 0 && S_ISDIR(st.st_mode);
-}
-
-std::vector<cv::Rect2f> readGroundTruth(const std::string& path) {
-  std::vector<cv::Rect2f> out;
-  std::ifstream in(path);
-  std::string line;
-  while (std::getline(in, line)) {
-    for (char& ch : line)
-      if (ch == ',' || ch == '\t' || ch == ';') ch = ' ';
-    std::istringstream ss(line);
-    float x, y, w, h;
-    if (ss >> x >> y >> w >> h) out.emplace_back(x, y, w, h);
-  }
-  return out;
-}
-
+// The sequence folders under root with a ground truth, in name order, read by the evaluation's
+// rules (eval::Sequence: img/ or a video, any ground-truth file it knows); others are skipped
+// with a message, as evaluate skips them.
 std::vector<Sequence> listSequences(const std::string& root) {
-  std::vector<Sequence> seqs;
-  DIR* d = opendir(root.c_str());
-  if (!d) return seqs;
-  std::vector<std::string> names;
-  while (dirent* e = readdir(d)) {
-    const std::string n = e->d_name;
-    if (n[0] != '.' && isDir(root + "/" + n + "/img")) names.push_back(n);
+  std::vector<fs::path> dirs;
+  std::error_code ec;
+  for (fs::directory_iterator it(root, ec), end; !ec && it != end; it.increment(ec)) {
+    if (it->is_directory(ec) && it->path().filename().string()[0] != '.') dirs.push_back(it->path());
   }
-  closedir(d);
-  std::sort(names.begin(), names.end());
-  for (const std::string& n : names) {
-    Sequence s;
-    s.name = n;
-    s.dir = root + "/" + n;
-    s.gt = readGroundTruth(s.dir + "/groundtruth_rect.txt");
-    for (size_t i = 1; i <= s.gt.size(); ++i) {
-      char buf[32];
-      std::snprintf(buf, sizeof buf, "/img/%04zu.jpg", i);
-      s.frames.push_back(s.dir + buf);
+  std::sort(dirs.begin(), dirs.end());
+  std::vector<Sequence> seqs;
+  for (const fs::path& dir : dirs) {
+    try {
+      const ev::Sequence seq(dir.string());
+      if (!seq.hasGroundTruth()) throw std::runtime_error("no ground truth");
+      seqs.push_back({seq.name(), dir.string(), seq.groundTruth()});
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "init_table: skipping %s (%s)\n", dir.string().c_str(), e.what());
     }
-    if (!s.gt.empty()) seqs.push_back(s);
   }
   return seqs;
 }
@@ -99,21 +77,6 @@ float centreError(const cv::Rect2f& a, const cv::Rect2f& b) {
 }
 
 bool isFlying(const std::string& n) { return n.rfind("antiuav", 0) == 0 || n.rfind("lasot_airplane", 0) == 0; }
-
-cv::Mat load(const std::string& path) {
-  // Frames as the core gets them: grey (CV_8UC1) when the file is grey, BGR otherwise.
-  cv::Mat f = cv::imread(path, cv::IMREAD_UNCHANGED);
-  if (f.empty()) throw std::runtime_error("cannot read " + path);
-  if (f.channels() == 4) cv::cvtColor(f, f, cv::COLOR_BGRA2BGR);
-  if (f.channels() == 3) {
-    // Thermal clips are stored as 3-channel JPEGs with equal channels: give the core grey.
-    std::vector<cv::Mat> ch;
-    cv::split(f, ch);
-    if (cv::norm(ch[0], ch[1], cv::NORM_INF) <= 8 && cv::norm(ch[0], ch[2], cv::NORM_INF) <= 8)
-      cv::cvtColor(f, f, cv::COLOR_BGR2GRAY);
-  }
-  return f;
-}
 
 struct AutoResult {
   int frame = -1;  // 1-based, -1 = none
@@ -158,12 +121,12 @@ struct Options {
 // Reads the command line into *o. Returns nothing when the tool is to run, otherwise the code to
 // exit with (0 after --help, 2 after a usage error; both already printed).
 std::optional<int> parseArgs(int argc, char** argv, Options* o) {
-  CLI::App app{"Auto-initialisation on real sequences (OTB layout: DIR/NAME/img/0001.jpg..., "
-               "groundtruth_rect.txt): prints Markdown tables of the first-frame detectors, the "
-               "AutoInitializer over the first N frames and a cue ablation.",
+  CLI::App app{"Auto-initialisation on real sequences (the sequence folders under DIR, read as evaluate "
+               "reads them: img/ or a video, and a ground truth): prints Markdown tables of the "
+               "first-frame detectors, the AutoInitializer over the first N frames and a cue ablation.",
                "init_table"};
   obstacle_tracker::tools::setToolDefaults(app);
-  app.add_option("--data", o->data, "folder of OTB-layout sequences")->type_name("DIR")->required();
+  app.add_option("--data", o->data, "folder of sequence folders")->type_name("DIR")->required();
   app.add_option("--frames", o->max_frames, "frames given to the AutoInitializer (at least 1)")
       ->type_name("N")
       ->capture_default_str();
@@ -176,9 +139,15 @@ std::optional<int> parseArgs(int argc, char** argv, Options* o) {
   return std::nullopt;
 }
 
+// The first frames of a sequence (at most one per ground-truth box) as evaluate gives them to
+// the core (eval::FrameConverter).
 std::vector<cv::Mat> loadFirstFrames(const Sequence& s, int max_frames) {
+  ev::Sequence seq(s.dir);
+  ev::FrameConverter converter;
   std::vector<cv::Mat> frames;
-  for (int i = 0; i < max_frames && i < static_cast<int>(s.frames.size()); ++i) frames.push_back(load(s.frames[i]));
+  cv::Mat raw;
+  const int n = std::min(max_frames, static_cast<int>(s.gt.size()));
+  while (static_cast<int>(frames.size()) < n && seq.read(raw)) frames.push_back(converter.convert(raw).clone());
   return frames;
 }
 
@@ -339,7 +308,7 @@ int main(int argc, char** argv) {
   if (const auto code = parseArgs(argc, argv, &opt)) return *code;
   const std::vector<Sequence> seqs = listSequences(opt.data);
   if (seqs.empty()) {
-    std::fprintf(stderr, "no OTB-layout sequences under %s\n", opt.data.c_str());
+    std::fprintf(stderr, "no sequence with ground truth under %s\n", opt.data.c_str());
     return 1;
   }
   const int first_second = static_cast<int>(std::lround(opt.fps));
