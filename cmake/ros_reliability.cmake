@@ -11,8 +11,8 @@ endif()
 
 set(OT_RELIABILITY_DIR test/ros/reliability)
 set(OT_LOAD_SECONDS 60 CACHE STRING "Duration of the reliability load rostest (s)")
-# bad_input.cpp comes first: GoogleTest runs the suites in the order the sources register them,
-# and its first test waits for the manager and both trackers.
+# bad_input.cpp's BadInput suite runs first (GoogleTest runs suites in the order they register);
+# BadGeometry uses its own tracker and waits for it, so the order is not relied on.
 set(OT_RELIABILITY_bad_input_EXTRA ${OT_RELIABILITY_DIR}/bad_geometry.cpp ${OT_RELIABILITY_DIR}/bad_input_harness.cpp)
 foreach(name bad_input load)
   catkin_add_executable_with_gtest(reliability_${name} ${OT_RELIABILITY_DIR}/${name}.cpp

@@ -58,7 +58,10 @@ def describe_sequence(path, tool, gt_path=None):
     """What the package finds in a sequence folder or video (eval::Sequence): a dict with name,
     kind (otb_folder, image_folder or video), frame_count, fps, video (the path, for a video),
     files (the frame images in order, for a folder) and gt (boxes as load_gt gives them)."""
-    args = ["--describe", path] + (["--gt", gt_path] if gt_path else [])
+    if "\n" in path:
+        sys.exit("cannot describe a sequence whose path holds a newline: %r" % path)
+    # --describe=PATH: a path that starts with '-' is not taken for an option.
+    args = ["--describe=" + path] + (["--gt=" + gt_path] if gt_path else [])
     info = {"files": [], "gt": [], "video": None}
     for line in _run(tool, args).splitlines():
         key, _, value = line.partition("=")

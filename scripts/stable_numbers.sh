@@ -2,7 +2,8 @@
 # Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
 #
 # Do the scores depend on the machine? track_sequence on a few clips, with OpenCV's run-time CPU
-# dispatch as it is, limited to the baseline instruction set, and on one thread; reports OTB
+# dispatch as it is, limited to the baseline instruction set, with glibc's libm limited the same
+# way, and on one thread; reports OTB
 # precision at 20 px and success AUC of each (score_boxes), --init gt and --init auto,
 # whether they agree within 0.02 and whether the outputs are byte-identical; exits non-zero when
 # one does not agree (docs/portability.md; CI: scripts/extra_tests.d/45-stable-numbers.sh). Clips:
@@ -34,7 +35,10 @@ for c in antiuav_ir_35 Vase lasot_airplane-1; do
 done
 
 # Each setting: a name and the environment it runs in. OpenCV's feature names as it spells them.
+# libm-baseline: glibc's libm without its FMA / AVX2 variants (exp, log, pow, cos pick them by
+# CPU), as on a CPU without them.
 settings=("dispatch-limited OPENCV_CPU_DISABLE=AVX512F,AVX2,FMA3,AVX,FP16,POPCNT"
+          "libm-baseline GLIBC_TUNABLES=glibc.cpu.hwcaps=-AVX2,-FMA"
           "one-thread OPENCV_FOR_THREADS_NUM=1")
 score() {  # P@20 and AUC of a boxes file against a ground truth: "p20 auc"
   "$BIN/score_boxes" "$1" --gt "$2" |

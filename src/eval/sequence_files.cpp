@@ -62,13 +62,16 @@ bool hasVideoExtension(const std::string& path) {
   return false;
 }
 
-// The files of dir whose path `wanted` accepts, in natural name order.
+// The files of dir (not hidden ones) whose path `wanted` accepts, in natural name order.
 std::vector<std::string> listFiles(const fs::path& dir, bool (*wanted)(const std::string&)) {
   std::vector<std::string> names;
   std::error_code ec;
   for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
     if (!it->is_regular_file(ec)) continue;
-    if (wanted(it->path().string())) names.push_back(it->path().filename().string());
+    const std::string name = it->path().filename().string();
+    // Hidden files are not frames (macOS writes ._NAME beside each file on exFAT drives).
+    if (name.empty() || name[0] == '.') continue;
+    if (wanted(it->path().string())) names.push_back(name);
   }
   std::sort(names.begin(), names.end(), naturalLess);
   std::vector<std::string> files;

@@ -316,7 +316,7 @@ void renderRow(const Scenery& s, int y, bool mono16, cv::Mat& out) {
   cv::Vec3b* o8 = mono16 ? nullptr : out.ptr<cv::Vec3b>(y);
   std::uint16_t* o16 = mono16 ? out.ptr<std::uint16_t>(y) : nullptr;
   // The width in a local: out.cols would be re-read after every byte store (a char store may alias
-  // it), which made the pass about a fifth slower.
+  // it).
   const int W = out.cols;
   for (int x = 0; x < W; ++x) {
     Shade px = shadeScenery(s, row, x);

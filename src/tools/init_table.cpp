@@ -19,6 +19,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -148,6 +149,7 @@ std::vector<cv::Mat> loadFirstFrames(const Sequence& s, int max_frames) {
   cv::Mat raw;
   const int n = std::min(max_frames, static_cast<int>(s.gt.size()));
   while (static_cast<int>(frames.size()) < n && seq.read(raw)) frames.push_back(converter.convert(raw).clone());
+  if (frames.empty()) throw std::runtime_error("cannot read a frame of '" + s.dir + "'");
   return frames;
 }
 
@@ -313,9 +315,15 @@ int main(int argc, char** argv) {
   }
   const int first_second = static_cast<int>(std::lround(opt.fps));
   const std::vector<Variant> variants = ablationVariants();
-  const std::vector<std::vector<cv::Mat>> all_frames = printFirstFrameTable(seqs, opt.max_frames);
-  printDetectorOptionsTable(seqs, all_frames, opt.max_frames);
-  printAutoInitTable(seqs, all_frames, variants[0].p, opt.max_frames, first_second);
-  printCueAblationTable(seqs, all_frames, variants, first_second);
+  try {
+    const std::vector<std::vector<cv::Mat>> all_frames = printFirstFrameTable(seqs, opt.max_frames);
+    printDetectorOptionsTable(seqs, all_frames, opt.max_frames);
+    printAutoInitTable(seqs, all_frames, variants[0].p, opt.max_frames, first_second);
+    printCueAblationTable(seqs, all_frames, variants, first_second);
+  } catch (const std::exception& e) {
+    std::fflush(stdout);  // the rows printed so far stay
+    std::fprintf(stderr, "init_table: error: %s\n", e.what());
+    return 1;
+  }
   return 0;
 }

@@ -29,7 +29,8 @@ TEST(PortableMath, ExpIsTheDoubleExpRoundedToFloat) {
 }
 
 TEST(PortableMath, ExpKnownValuesAndLimits) {
-  std::vector<float> x = {0.0f, 1.0f, -1.0f, std::log(2.0f), -0.5f, -87.0f, -90.0f, -1e30f, 88.0f, 1e30f};
+  std::vector<float> x = {0.0f,   1.0f,   -1.0f, std::log(2.0f), -0.5f, -87.0f,
+                          -90.0f, -1e30f, 88.0f, 1e30f,          std::numeric_limits<float>::quiet_NaN()};
   oc::expInPlace(x.data(), static_cast<int>(x.size()));
   EXPECT_EQ(x[0], 1.0f);
   EXPECT_EQ(x[1], static_cast<float>(std::exp(1.0)));
@@ -41,6 +42,7 @@ TEST(PortableMath, ExpKnownValuesAndLimits) {
   EXPECT_EQ(x[7], 0.0f);  // clamped, not NaN
   EXPECT_EQ(x[8], static_cast<float>(std::exp(88.0)));
   EXPECT_EQ(x[9], static_cast<float>(std::exp(88.0)));  // clamped, finite
+  EXPECT_TRUE(std::isnan(x[10]));
 }
 
 TEST(PortableMath, BlendAndSumOfSquares) {

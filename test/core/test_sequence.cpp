@@ -326,6 +326,7 @@ TEST(SequenceVideo, FolderHoldingOneVideoReadsItWithTheFolderGroundTruth) {
   }
   std::ofstream(dir / "groundtruth_rect.txt") << "1,2,3,4\n5,6,7,8\n9,10,11,12\n";
   std::ofstream(dir / "SOURCE.txt") << "not a ground truth";
+  std::ofstream(dir / "._video.avi") << "a hidden file macOS writes beside the video";
   Sequence seq(dir.string());
   EXPECT_EQ(seq.kind(), Sequence::Kind::kVideo);
   EXPECT_EQ(seq.name(), dir.filename().string());
