@@ -6,6 +6,7 @@
 // code (2 for every tool). An option given twice keeps its last value.
 #pragma once
 
+#include <cstdio>
 #include <iostream>
 #include <exception>
 #include <optional>
@@ -72,6 +73,17 @@ inline bool parseSize(const std::string& v, const char* separators, cv::Size* si
   }
   *size = cv::Size(w, h);
   return true;
+}
+
+// Exit code after a tool's standard output is complete: 0, or 1 with "TOOL: error: cannot write
+// the output" when it could not all be written (a full disk, a closed pipe). Output sits in the
+// streams' buffers until the flush, so without this a failed write exits with 0.
+inline int finishStandardOutput(const char* tool) {
+  std::cout.flush();
+  const bool stdio_ok = std::fflush(stdout) == 0 && !std::ferror(stdout);
+  if (std::cout && stdio_ok) return 0;
+  std::cerr << tool << ": error: cannot write the output\n";
+  return 1;
 }
 
 }  // namespace tools

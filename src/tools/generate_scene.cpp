@@ -64,7 +64,7 @@ int main(int argc, char** argv) {
     std::cout << "Modifiers:\n";
     for (const auto& d : os::listScenarios())
       if (d.modifier) std::cout << "  " << d.name << std::string(d.name.size() < 14 ? 14 - d.name.size() : 1, ' ') << d.description << "\n";
-    return 0;
+    return obstacle_tracker::tools::finishStandardOutput("generate_scene");
   }
   if (!size.empty() && !obstacle_tracker::tools::parseSize(size, "xX", &cfg.size)) {
     return obstacle_tracker::tools::usageError(app, "--size wants WxH, got " + size);

@@ -99,12 +99,7 @@ const char* kindName(ev::Sequence::Kind kind) {
 
 void printValue(const char* key, double value) { std::printf("%s=%.10g\n", key, value); }
 
-// Exit code after the output: 1 (with a message) when it could not be written.
-int flushOutput() {
-  if (std::fflush(stdout) == 0 && !std::ferror(stdout)) return 0;
-  std::cerr << "score_boxes: error: cannot write the output\n";
-  return 1;
-}
+int flushOutput() { return obstacle_tracker::tools::finishStandardOutput("score_boxes"); }
 
 int score(const Options& o, const std::vector<cv::Rect2f>& gt) {
   const ev::TrackerBoxes boxes = ev::loadTrackerBoxes(o.boxes);

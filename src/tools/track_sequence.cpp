@@ -341,6 +341,9 @@ int run(const Options& opt) {
     progress_bar.update(index, tracker.coreSeconds());
   }
   progress_bar.finish(index, tracker.coreSeconds());
+  // Lines sit in the stream's buffer until here: a full disk or a closed pipe shows at the flush.
+  out.flush();
+  if (!out) throw std::runtime_error("write error on '" + (opt.output.empty() ? "stdout" : opt.output) + "'");
   if (index == 0) throw std::runtime_error("no frame could be read from '" + opt.input + "'");
   if (opt.init != "auto" && !tracker.started()) {
     std::cerr << "track_sequence: warning: the start box was never present; nothing was tracked\n";
