@@ -29,6 +29,7 @@
 
 #include "command_line.h"
 #include "init_table/variants.h"
+#include "obstacle_tracker/core/box_geometry.h"
 #include "obstacle_tracker/core/saliency.h"
 #include "obstacle_tracker/core/segmentation.h"
 #include "obstacle_tracker/eval/metrics.h"
@@ -71,8 +72,8 @@ std::vector<Sequence> listSequences(const std::string& root) {
   return seqs;
 }
 
-// The evaluation's own measures (metrics.h), as float for the tables.
-float iou(const cv::Rect2f& a, const cv::Rect2f& b) { return static_cast<float>(obstacle_tracker::eval::iou(a, b)); }
+// The evaluation's own measures (metrics.h: IoU in double precision), as float for the tables.
+float overlap(const cv::Rect2f& a, const cv::Rect2f& b) { return static_cast<float>(oc::boxIou<double>(a, b)); }
 float centreError(const cv::Rect2f& a, const cv::Rect2f& b) {
   return static_cast<float>(obstacle_tracker::eval::centreError(a, b));
 }
@@ -98,7 +99,7 @@ AutoResult runAuto(const Sequence& s, const std::vector<cv::Mat>& frames, const 
     if (!out.empty()) {
       r.frame = static_cast<int>(i) + 1;
       r.error = centreError(out[0].box, s.gt[i]);
-      r.iou = iou(out[0].box, s.gt[i]);
+      r.iou = overlap(out[0].box, s.gt[i]);
       break;
     }
   }
@@ -183,7 +184,7 @@ std::string bestRegionCell(const std::vector<oc::SalientRegion>& r, const cv::Re
   if (err) {
     std::snprintf(buf, sizeof buf, "%.0f", centreError(r[0].box, gt));
   } else {
-    std::snprintf(buf, sizeof buf, "%.2f", iou(r[0].box, gt));
+    std::snprintf(buf, sizeof buf, "%.2f", overlap(r[0].box, gt));
   }
   return std::string(buf);
 }
@@ -217,7 +218,7 @@ void printDetectorOptionRow(const Variant& o, const std::vector<Sequence>& seqs,
   for (size_t k = 0; k < seqs.size(); ++k)
     for (size_t i = 0; i < all_frames[k].size(); i += 5) {
       const auto& r = od.detect(all_frames[k][i]);
-      const float v = r.empty() ? 0.0f : iou(r[0].box, seqs[k].gt[i]);
+      const float v = r.empty() ? 0.0f : overlap(r[0].box, seqs[k].gt[i]);
       const bool hit = !r.empty() && centreError(r[0].box, seqs[k].gt[i]) <= 20.0f;
       iou_all += v;
       ++n_all;
