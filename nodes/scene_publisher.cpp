@@ -5,38 +5,26 @@
 //   - a generated flight scene (src/scene, rendered in-process): ~scenario (default "demo"),
 //     ~seed, ~frames (0: the scenario's length), ~width x ~height, ~mono16 (thermal-like mono16
 //     frames instead of bgr8); camera_info from the scene's focal length;
-//   - or, when ~folder is set, the images of a folder (OTB layout FOLDER/img/*.jpg, or
-//     FOLDER/*.{jpg,png,...}; 16-bit PNGs go out as mono16), camera_info from ~hfov (deg).
-// ~rate (Hz, 0: the scene's fps / 30 for a folder), ~loop (start again at the end; stamps keep
-// increasing), ~frame_id (camera_optical). Exits after the last frame unless ~loop.
+//   - or, when ~folder is set, that sequence read as evaluate reads it (eval::Sequence: an OTB
+//     folder FOLDER/img/*.jpg, a folder of images, a folder holding one video, or a video file;
+//     16-bit PNGs go out as mono16), camera_info from ~hfov (deg).
+// ~rate (Hz, 0: the scene's fps, or the sequence's: its video's or scene file's, else 30), ~loop
+// (start again at the end; stamps keep increasing), ~frame_id (camera_optical). Exits after the
+// last frame unless ~loop.
 #include <algorithm>
 #include <cmath>
 #include <memory>
 #include <string>
-#include <vector>
 
 #include <cv_bridge/cv_bridge.h>
-#include <opencv2/core/utils/filesystem.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <ros/ros.h>
 #include <sensor_msgs/CameraInfo.h>
 #include <sensor_msgs/image_encodings.h>
 
+#include "obstacle_tracker/eval/sequence.h"
 #include "obstacle_tracker/scene/scene_generator.h"
 
 namespace {
-
-std::vector<std::string> listImages(const std::string& folder) {
-  std::vector<std::string> files;
-  const std::string dir = cv::utils::fs::isDirectory(folder + "/img") ? folder + "/img" : folder;
-  for (const char* pattern : {"*.jpg", "*.jpeg", "*.png", "*.bmp", "*.pgm", "*.ppm", "*.tif", "*.tiff"}) {
-    std::vector<cv::String> found;
-    cv::glob(dir + "/" + pattern, found, false);
-    files.insert(files.end(), found.begin(), found.end());
-  }
-  std::sort(files.begin(), files.end());
-  return files;
-}
 
 sensor_msgs::CameraInfo pinhole(int width, int height, double focal) {
   sensor_msgs::CameraInfo info;
@@ -75,12 +63,12 @@ PublisherParams readParams(const ros::NodeHandle& pnh) {
   return p;
 }
 
-// Where the frames come from: a generated scene, or else the image files of a folder.
+// Where the frames come from: a generated scene, or else a sequence on disk.
 struct FrameSource {
   std::unique_ptr<obstacle_tracker::scene::SceneGenerator> scene;
-  std::vector<std::string> files;
+  std::unique_ptr<obstacle_tracker::eval::Sequence> sequence;
   int count = 0;
-  double focal = 0.0;  // the scene's; 0 for a folder (camera_info then from ~hfov)
+  double focal = 0.0;  // the scene's; 0 for a sequence (camera_info then from ~hfov)
 };
 
 // Opens the folder or the scene of *p and settles p->rate when it is 0. False (after ROS_FATAL)
@@ -88,14 +76,14 @@ struct FrameSource {
 bool openSource(PublisherParams* p, FrameSource* source) {
   try {
     if (!p->folder.empty()) {
-      source->files = listImages(p->folder);
-      if (source->files.empty()) {
-        ROS_FATAL("no images in %s (nor in %s/img)", p->folder.c_str(), p->folder.c_str());
+      source->sequence.reset(new obstacle_tracker::eval::Sequence(p->folder));
+      source->count = source->sequence->frameCount();
+      if (source->count <= 0) {
+        ROS_FATAL("%s does not tell its frame count", p->folder.c_str());
         return false;
       }
-      source->count = static_cast<int>(source->files.size());
-      if (p->rate <= 0.0) p->rate = 30.0;
-      ROS_INFO("publishing %d images of %s at %.1f Hz", source->count, p->folder.c_str(), p->rate);
+      if (p->rate <= 0.0) p->rate = source->sequence->fps();
+      ROS_INFO("publishing %d frames of %s at %.1f Hz", source->count, p->folder.c_str(), p->rate);
     } else {
       obstacle_tracker::scene::ScenarioConfig config;
       config.name = p->scenario;
@@ -123,9 +111,11 @@ bool readFrame(FrameSource& source, int i, cv::Mat* frame) {
     if (source.scene) {
       source.scene->renderFrame(i, *frame);
     } else {
-      *frame = cv::imread(source.files[i], cv::IMREAD_UNCHANGED);
-      if (frame->empty()) {
-        ROS_WARN_THROTTLE(5.0, "cannot read %s: skipped", source.files[i].c_str());
+      // Seek only off the sequential path: after a frame that could not be decoded (read() throws
+      // without moving on) and when looping back to the start.
+      if (source.sequence->position() != i) source.sequence->seek(i);
+      if (!source.sequence->read(*frame)) {
+        ROS_WARN_THROTTLE(5.0, "%s ends before frame %d: skipped", source.sequence->path().c_str(), i);
         return false;
       }
     }

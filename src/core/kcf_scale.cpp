@@ -90,14 +90,14 @@ float KcfTracker::Impl::detectScale(const cv::Mat& frame) {
 
 // Scale self-calibration: on the frame it was trained on, the model's peak at the scale
 // s^-k and at s^k should be equal (the true scale is 1); they are not (a tighter window of a
-// thin silhouette on sky answers higher), and that asymmetry made the three-scale search
-// shrink a constant-size target to half its size over 100 frames on the generated crossing
-// scenes. The factors c_k = (sqrt(peak(s^-k) * peak(s^k)) / peak(s^k))^kScaleCalibration
-// take half of that asymmetry away there (the unit scale keeps 1) and are applied to every later
-// frame's peaks before the choice. Half, not all: the full correction kept the generated scenes'
-// sizes as well but lost the Woman clip (0.99 -> 0.43 precision) and a camera jerk; with half,
-// on the dev clips ours-gt went 0.844/0.508 -> 0.868/0.544 and the generated crossing's AUC
-// 0.62 -> 0.83 (box side 0.83 -> 0.92 of the truth at mid-clip).
+// thin silhouette on sky answers higher), and left alone that asymmetry makes the three-scale
+// search shrink a constant-size target (to half its size over 100 frames on the generated
+// crossing scenes). The factors
+//   c_k = (sqrt(peak(s^-k) * peak(s^k)) / peak(s^k))^kScaleCalibration
+// take half of that asymmetry away (the unit scale keeps 1) and are applied to every later
+// frame's peaks before the choice. Half, not all: the full correction keeps the generated
+// scenes' sizes as well but loses a tall pedestrian (the Woman clip) and a camera jerk
+// (docs/measurements.md, "Scale self-calibration").
 void KcfTracker::Impl::calibrateScales(const cv::Mat& frame) {
   const int count = static_cast<int>(scales.size());
   std::fill(scale_calib.begin(), scale_calib.end(), 1.0f);

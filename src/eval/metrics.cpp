@@ -12,29 +12,11 @@
 namespace obstacle_tracker {
 namespace eval {
 
-bool isAbsent(const cv::Rect2f& b) {
-  // NaN compares false, so "!(w > 0)" also catches a NaN size.
-  return std::isnan(b.x) || std::isnan(b.y) || !(b.width > 0.0f) || !(b.height > 0.0f) ||
-         std::isinf(b.x) || std::isinf(b.y) || std::isinf(b.width) || std::isinf(b.height);
-}
-
 double centreError(const cv::Rect2f& a, const cv::Rect2f& b) {
   if (isAbsent(a) || isAbsent(b)) return std::numeric_limits<double>::infinity();
   const double dx = (double(a.x) + 0.5 * a.width) - (double(b.x) + 0.5 * b.width);
   const double dy = (double(a.y) + 0.5 * a.height) - (double(b.y) + 0.5 * b.height);
   return std::sqrt(dx * dx + dy * dy);
-}
-
-double iou(const cv::Rect2f& a, const cv::Rect2f& b) {
-  if (isAbsent(a) || isAbsent(b)) return 0.0;
-  // Continuous boxes. The OTB toolkit's pixel-inclusive formula (right = x + w - 1, width =
-  // right - left + 1) gives the same intersection and union.
-  const double ix = std::min(double(a.x) + a.width, double(b.x) + b.width) - std::max<double>(a.x, b.x);
-  const double iy = std::min(double(a.y) + a.height, double(b.y) + b.height) - std::max<double>(a.y, b.y);
-  if (ix <= 0.0 || iy <= 0.0) return 0.0;
-  const double inter = ix * iy;
-  const double uni = double(a.width) * a.height + double(b.width) * b.height - inter;
-  return uni > 0.0 ? std::min(1.0, inter / uni) : 0.0;
 }
 
 double precisionThreshold(int i) { return static_cast<double>(i); }
@@ -61,7 +43,7 @@ FrameErrors frameErrors(const std::vector<cv::Rect2f>& predicted, const std::vec
       continue;
     }
     e.centre_error.push_back(centreError(predicted[i], gt[i]));
-    e.overlap.push_back(iou(predicted[i], gt[i]));
+    e.overlap.push_back(core::boxIou<double>(predicted[i], gt[i]));
   }
   return e;
 }
@@ -152,7 +134,7 @@ LongTermScores longTermScores(const std::vector<cv::Rect2f>& predicted,
   std::vector<float> reported;
   for (size_t i = 0; i < n; ++i) {
     if (!isAbsent(gt[i])) ++s.present_frames;
-    ov[i] = iou(predicted[i], gt[i]);
+    ov[i] = core::boxIou<double>(predicted[i], gt[i]);
     if (!isAbsent(predicted[i])) {
       if (std::isnan(confidence[i])) {
         throw std::invalid_argument("longTermScores: NaN confidence at frame " + std::to_string(i));
@@ -211,7 +193,7 @@ SenseAvoidScores senseAvoidScores(const std::vector<cv::Rect2f>& predicted, cons
   for (std::size_t i = 0; i < gt.size(); ++i) {
     const bool reported = !isAbsent(predicted[i]);
     const bool present = !isAbsent(gt[i]);
-    const double overlap = iou(predicted[i], gt[i]);  // 0 when either is absent
+    const double overlap = core::boxIou<double>(predicted[i], gt[i]);  // 0 when either is absent
     state_sum += present ? overlap : (reported ? 0.0 : 1.0);
     if (s.first_present_frame < 0 && present) s.first_present_frame = static_cast<int>(i);
     if (s.first_correct_frame < 0 && present && centreError(predicted[i], gt[i]) <= correct_px) {

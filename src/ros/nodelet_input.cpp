@@ -43,7 +43,7 @@ void ObstacleTrackerNodelet::subscribeCamera(std::uint32_t queue, const image_tr
   camera_sub_ = it_->subscribeCamera("image", queue, &ObstacleTrackerNodelet::imageInfoCallback, this, hints);
   image_topic_ = camera_sub_.getTopic();
   info_topic_ = camera_sub_.getInfoTopic();
-  // A remapping of camera_info alone no longer reaches the subscription: say so rather than wait
+  // A remapping of camera_info alone does not reach the subscription: say so rather than wait
   // for pairs that never come.
   const std::string remapped = nh.resolveName("camera_info");
   if (remapped != nh.resolveName("camera_info", false) && remapped != info_topic_) {

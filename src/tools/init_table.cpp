@@ -18,9 +18,11 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <opencv2/imgcodecs.hpp>
@@ -29,6 +31,7 @@
 
 #include "command_line.h"
 #include "init_table/variants.h"
+#include "obstacle_tracker/core/box_geometry.h"
 #include "obstacle_tracker/core/saliency.h"
 #include "obstacle_tracker/core/segmentation.h"
 #include "obstacle_tracker/eval/metrics.h"
@@ -43,9 +46,13 @@ using obstacle_tracker::init_table_tool::Variant;
 
 namespace {
 
+// A sequence folder with a ground truth. Its reader is the one listSequences opened to find the
+// ground truth, kept until loadFirstFrames has taken the frames the tables use: opening it again
+// would parse the ground truth and, for a video, set up a decoder a second time.
 struct Sequence {
   std::string name, dir;
   std::vector<cv::Rect2f> gt;
+  std::unique_ptr<ev::Sequence> reader;
 };
 
 // The sequence folders under root with a ground truth, in name order, read by the evaluation's
@@ -61,9 +68,11 @@ std::vector<Sequence> listSequences(const std::string& root) {
   std::vector<Sequence> seqs;
   for (const fs::path& dir : dirs) {
     try {
-      const ev::Sequence seq(dir.string());
-      if (!seq.hasGroundTruth()) throw std::runtime_error("no ground truth");
-      seqs.push_back({seq.name(), dir.string(), seq.groundTruth()});
+      auto reader = std::make_unique<ev::Sequence>(dir.string());
+      if (!reader->hasGroundTruth()) throw std::runtime_error("no ground truth");
+      Sequence s{reader->name(), dir.string(), reader->groundTruth(), nullptr};
+      s.reader = std::move(reader);
+      seqs.push_back(std::move(s));
     } catch (const std::exception& e) {
       std::fprintf(stderr, "init_table: skipping %s (%s)\n", dir.string().c_str(), e.what());
     }
@@ -71,8 +80,8 @@ std::vector<Sequence> listSequences(const std::string& root) {
   return seqs;
 }
 
-// The evaluation's own measures (metrics.h), as float for the tables.
-float iou(const cv::Rect2f& a, const cv::Rect2f& b) { return static_cast<float>(obstacle_tracker::eval::iou(a, b)); }
+// The evaluation's own measures (metrics.h: IoU in double precision), as float for the tables.
+float overlap(const cv::Rect2f& a, const cv::Rect2f& b) { return static_cast<float>(oc::boxIou<double>(a, b)); }
 float centreError(const cv::Rect2f& a, const cv::Rect2f& b) {
   return static_cast<float>(obstacle_tracker::eval::centreError(a, b));
 }
@@ -98,7 +107,7 @@ AutoResult runAuto(const Sequence& s, const std::vector<cv::Mat>& frames, const 
     if (!out.empty()) {
       r.frame = static_cast<int>(i) + 1;
       r.error = centreError(out[0].box, s.gt[i]);
-      r.iou = iou(out[0].box, s.gt[i]);
+      r.iou = overlap(out[0].box, s.gt[i]);
       break;
     }
   }
@@ -141,14 +150,14 @@ std::optional<int> parseArgs(int argc, char** argv, Options* o) {
 }
 
 // The first frames of a sequence (at most one per ground-truth box) as evaluate gives them to
-// the core (eval::FrameConverter).
-std::vector<cv::Mat> loadFirstFrames(const Sequence& s, int max_frames) {
-  ev::Sequence seq(s.dir);
+// the core (eval::FrameConverter); its reader is closed afterwards.
+std::vector<cv::Mat> loadFirstFrames(Sequence& s, int max_frames) {
   ev::FrameConverter converter;
   std::vector<cv::Mat> frames;
   cv::Mat raw;
   const int n = std::min(max_frames, static_cast<int>(s.gt.size()));
-  while (static_cast<int>(frames.size()) < n && seq.read(raw)) frames.push_back(converter.convert(raw).clone());
+  while (static_cast<int>(frames.size()) < n && s.reader->read(raw)) frames.push_back(converter.convert(raw).clone());
+  s.reader.reset();
   if (frames.empty()) throw std::runtime_error("cannot read a frame of '" + s.dir + "'");
   return frames;
 }
@@ -183,19 +192,19 @@ std::string bestRegionCell(const std::vector<oc::SalientRegion>& r, const cv::Re
   if (err) {
     std::snprintf(buf, sizeof buf, "%.0f", centreError(r[0].box, gt));
   } else {
-    std::snprintf(buf, sizeof buf, "%.2f", iou(r[0].box, gt));
+    std::snprintf(buf, sizeof buf, "%.2f", overlap(r[0].box, gt));
   }
   return std::string(buf);
 }
 
 // The first-frame table. Loads the first frames of every sequence on the way (returned, one
 // list per sequence), so the rows of the sequences read so far are out when a frame cannot be read.
-std::vector<std::vector<cv::Mat>> printFirstFrameTable(const std::vector<Sequence>& seqs, int max_frames) {
+std::vector<std::vector<cv::Mat>> printFirstFrameTable(std::vector<Sequence>& seqs, int max_frames) {
   std::printf("## First frame, one-frame detectors (best-ranked region)\n\n");
   std::printf("| sequence | size | MBD IoU | MBD centre err (px) | SR IoU | SR centre err (px) |\n|---|---|---|---|---|---|\n");
   std::vector<std::vector<cv::Mat>> all_frames;
   FirstFrameDetectors detectors;
-  for (const Sequence& s : seqs) {
+  for (Sequence& s : seqs) {
     all_frames.push_back(loadFirstFrames(s, max_frames));
     const cv::Mat& f0 = all_frames.back()[0];
     const auto& ours = detectors.mbd.detect(f0);
@@ -217,7 +226,7 @@ void printDetectorOptionRow(const Variant& o, const std::vector<Sequence>& seqs,
   for (size_t k = 0; k < seqs.size(); ++k)
     for (size_t i = 0; i < all_frames[k].size(); i += 5) {
       const auto& r = od.detect(all_frames[k][i]);
-      const float v = r.empty() ? 0.0f : iou(r[0].box, seqs[k].gt[i]);
+      const float v = r.empty() ? 0.0f : overlap(r[0].box, seqs[k].gt[i]);
       const bool hit = !r.empty() && centreError(r[0].box, seqs[k].gt[i]) <= 20.0f;
       iou_all += v;
       ++n_all;
@@ -308,7 +317,7 @@ void printCueAblationTable(const std::vector<Sequence>& seqs, const std::vector<
 int main(int argc, char** argv) {
   Options opt;
   if (const auto code = parseArgs(argc, argv, &opt)) return *code;
-  const std::vector<Sequence> seqs = listSequences(opt.data);
+  std::vector<Sequence> seqs = listSequences(opt.data);
   if (seqs.empty()) {
     std::fprintf(stderr, "no sequence with ground truth under %s\n", opt.data.c_str());
     return 1;

@@ -12,6 +12,7 @@
 #include "obstacle_tracker/eval/metrics.h"
 
 namespace ev = obstacle_tracker::eval;
+namespace oc = obstacle_tracker::core;
 using cv::Rect2f;
 
 namespace {
@@ -44,13 +45,15 @@ TEST(Metrics, CentreErrorAndIou) {
   EXPECT_DOUBLE_EQ(ev::centreError(kGt, Rect2f(3, 4, 10, 10)), 5.0);
   EXPECT_DOUBLE_EQ(ev::centreError(kGt, Rect2f(-1, -1, 12, 12)), 0.0);  // same centre, other size
   EXPECT_TRUE(std::isinf(ev::centreError(kGt, kNone)));
-  EXPECT_DOUBLE_EQ(ev::iou(kGt, kGt), 1.0);
-  EXPECT_DOUBLE_EQ(ev::iou(kGt, Rect2f(5, 0, 10, 10)), 50.0 / 150.0);
-  EXPECT_DOUBLE_EQ(ev::iou(kGt, Rect2f(2, 2, 5, 5)), 25.0 / 100.0);   // inside
-  EXPECT_DOUBLE_EQ(ev::iou(kGt, Rect2f(10, 0, 10, 10)), 0.0);         // touching edges
-  EXPECT_DOUBLE_EQ(ev::iou(kGt, Rect2f(30, 30, 5, 5)), 0.0);
-  EXPECT_DOUBLE_EQ(ev::iou(kGt, kNone), 0.0);
-  EXPECT_DOUBLE_EQ(ev::iou(kGt, Rect2f(kNaN, 0, 10, 10)), 0.0);
+  EXPECT_DOUBLE_EQ(oc::boxIou<double>(kGt, kGt), 1.0);
+  EXPECT_DOUBLE_EQ(oc::boxIou<double>(kGt, Rect2f(5, 0, 10, 10)), 50.0 / 150.0);
+  EXPECT_DOUBLE_EQ(oc::boxIou<double>(kGt, Rect2f(2, 2, 5, 5)), 25.0 / 100.0);   // inside
+  EXPECT_DOUBLE_EQ(oc::boxIou<double>(kGt, Rect2f(10, 0, 10, 10)), 0.0);         // touching edges
+  EXPECT_DOUBLE_EQ(oc::boxIou<double>(kGt, Rect2f(30, 30, 5, 5)), 0.0);
+  EXPECT_DOUBLE_EQ(oc::boxIou<double>(kGt, kNone), 0.0);
+  EXPECT_DOUBLE_EQ(oc::boxIou<double>(kGt, Rect2f(kNaN, 0, 10, 10)), 0.0);
+  EXPECT_EQ(oc::boxIou<float>(kGt, kNone), 0.0f);
+  EXPECT_EQ(oc::boxIou<float>(kGt, Rect2f(kNaN, 0, 10, 10)), 0.0f);
 }
 
 TEST(Metrics, IouMatchesOtbToolkitFormula) {
@@ -59,8 +62,10 @@ TEST(Metrics, IouMatchesOtbToolkitFormula) {
   for (int k = 0; k < 2000; ++k) {
     const Rect2f a(pos(rng), pos(rng), size(rng), size(rng));
     const Rect2f b(pos(rng), pos(rng), size(rng), size(rng));
-    ASSERT_NEAR(ev::iou(a, b), otbToolkitOverlap(a, b), 1e-12) << k;
-    ASSERT_DOUBLE_EQ(ev::iou(a, b), ev::iou(b, a));
+    ASSERT_NEAR(oc::boxIou<double>(a, b), otbToolkitOverlap(a, b), 1e-12) << k;
+    ASSERT_DOUBLE_EQ(oc::boxIou<double>(a, b), oc::boxIou<double>(b, a));
+    // The tracking loop's float IoU is the same computation, to float rounding.
+    ASSERT_NEAR(oc::boxIou<float>(a, b), oc::boxIou<double>(a, b), 1e-6) << k;
   }
 }
 
@@ -116,7 +121,7 @@ TEST(Metrics, AucApproximatesMeanOverlap) {
   for (int k = 0; k < 5000; ++k) {
     gt.push_back(kGt);
     pred.emplace_back(shift(rng), shift(rng), 10.0f, 10.0f);
-    mean_iou += ev::iou(pred.back(), kGt);
+    mean_iou += oc::boxIou<double>(pred.back(), kGt);
   }
   mean_iou /= gt.size();
   EXPECT_NEAR(ev::otbScores(pred, gt).auc, mean_iou, 0.05 / 2 + 1e-3);

@@ -12,8 +12,10 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
+#include "obstacle_tracker/core/box_geometry.h"
 #include "obstacle_tracker/core/pipeline.h"
 
+using obstacle_tracker::core::boxIou;
 using obstacle_tracker::core::Obstacle;
 using obstacle_tracker::core::Params;
 using obstacle_tracker::core::Pipeline;
@@ -60,11 +62,6 @@ void drawObject(cv::Mat& frame, const cv::Mat& tex, const cv::Rect& box) {
   cv::Mat patch;
   cv::resize(tex, patch, box.size(), 0, 0, cv::INTER_NEAREST);
   patch(cv::Rect(clipped.tl() - box.tl(), clipped.size())).copyTo(frame(clipped));
-}
-
-float iou(const cv::Rect2f& a, const cv::Rect2f& b) {
-  const float inter = (a & b).area();
-  return inter / (a.area() + b.area() - inter);
 }
 
 const Obstacle* findId(const std::vector<Obstacle>& obs, int id) {
@@ -169,7 +166,7 @@ TEST(Pipeline, ReDetectsAfterAJumpInsideTheWindowKeepingTheId) {
     const auto& out = p.process(frame, k / 30.0);
     const Obstacle* o = findId(out, id);
     ASSERT_NE(o, nullptr) << "track ended at frame " << k;
-    recovered = o->state == TrackState::kTracking && iou(o->box, truth) > 0.5f;
+    recovered = o->state == TrackState::kTracking && boxIou(o->box, truth) > 0.5f;
   }
   EXPECT_TRUE(recovered);
 }
@@ -198,7 +195,7 @@ TEST(Pipeline, ReDetectsAfterAJumpLargerThanTheSearchWindow) {
     frame = bg.clone();
     drawObject(frame, tex, truth);
     const auto& out = p.process(frame, k / 30.0);
-    if (!out.empty() && out[0].state == TrackState::kTracking && iou(out[0].box, truth) > 0.3f) {
+    if (!out.empty() && out[0].state == TrackState::kTracking && boxIou(out[0].box, truth) > 0.3f) {
       found_at = k;
       break;
     }
@@ -247,7 +244,7 @@ TEST(Pipeline, FullOcclusionLowersConfidenceAndIsNotLearned) {
     const auto& out = p.process(frame, k / 30.0);
     const Obstacle* o = findId(out, id);
     ASSERT_NE(o, nullptr);
-    back = o->state == TrackState::kTracking && iou(o->box, truth) > 0.5f;
+    back = o->state == TrackState::kTracking && boxIou(o->box, truth) > 0.5f;
   }
   EXPECT_TRUE(back);
 }

@@ -215,7 +215,7 @@ TEST(PipelineScenes, CrossingWithJerks) {
   // The ground-truth box is the drawn pixel extent, motion blur included, so during a jerk it
   // stretches along the blur while the tracker's box keeps the aircraft's size: the AUC bar
   // follows that definition. The same on every CPU (OpenCV dispatch limited or not): the
-  // filter's float steps no longer depend on it (portable_math.h).
+  // filter's float steps do not depend on it (portable_math.h).
   const SceneRun r = runScene("crossing+jerk", 150, true);
   EXPECT_GE(r.scores.precision20, 0.85);
   EXPECT_GE(r.scores.auc, 0.35);

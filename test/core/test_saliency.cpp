@@ -13,18 +13,13 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "obstacle_tracker/core/box_geometry.h"
 #include "obstacle_tracker/core/saliency.h"
 #include "obstacle_tracker/core/segmentation.h"
 
 namespace oc = obstacle_tracker::core;
 
 namespace {
-
-float iou(const cv::Rect2f& a, const cv::Rect2f& b) {
-  const float inter = (a & b).area();
-  const float uni = a.area() + b.area() - inter;
-  return uni > 0.0f ? inter / uni : 0.0f;
-}
 
 struct Scene {
   cv::Mat frame;   // CV_8UC3 or CV_8UC1
@@ -151,7 +146,7 @@ TEST(Saliency, OtsuIsThePaperFormulaAndCvThreshold) {
     EXPECT_EQ(static_cast<int>(t), paperOtsu(map)) << "trial " << trial;
     EXPECT_EQ(cv::countNonZero(ref != ex.binary()), 0);
     ASSERT_FALSE(regions.empty());
-    EXPECT_GE(iou(regions[0].box, cv::Rect2f(r)), 0.8f);
+    EXPECT_GE(oc::boxIou(regions[0].box, cv::Rect2f(r)), 0.8f);
   }
 }
 
@@ -202,7 +197,7 @@ TEST(Saliency, FindsObjectInGeneratedScenes) {
   for (int i = 0; i < n; ++i) {
     const Scene s = makeScene(rng, cv::Size(320, 240), i % 2 == 0);
     const auto& regions = det.detect(s.frame);
-    const float best = regions.empty() ? 0.0f : iou(regions[0].box, s.box);
+    const float best = regions.empty() ? 0.0f : oc::boxIou(regions[0].box, s.box);
     if (best >= 0.8f) ++found;
   }
   EXPECT_GE(found, 190) << found << " of " << n;
@@ -225,7 +220,7 @@ TEST(Saliency, WindowedRedetectionReturnsFrameCoordinates) {
     for (const auto& r : regions) {
       EXPECT_TRUE((cv::Rect2f(win) & r.box) == r.box) << "region outside the window";
     }
-    if (!regions.empty() && iou(regions[0].box, s.box) >= 0.8f) ++found;
+    if (!regions.empty() && oc::boxIou(regions[0].box, s.box) >= 0.8f) ++found;
   }
   EXPECT_GE(found, 57) << found << " of " << n;
 }
@@ -352,7 +347,7 @@ TEST(Saliency, OptionsProduceValidMaps) {
         cv::minMaxLoc(map, nullptr, &mx);
         EXPECT_EQ(mx, 255.0);
         ASSERT_FALSE(regions.empty()) << bg << pp << med;
-        EXPECT_GE(iou(regions[0].box, s.box), 0.5f) << bg << pp << med;
+        EXPECT_GE(oc::boxIou(regions[0].box, s.box), 0.5f) << bg << pp << med;
       }
 }
 

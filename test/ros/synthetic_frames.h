@@ -1,7 +1,8 @@
 // Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
 //
-// Synthetic test frames for the ROS tests: a bright disc on a sky gradient, drifting slowly, and
-// the matching sensor_msgs (Image, CameraInfo). No data files needed.
+// Synthetic test frames for the ROS tests: a bright disc on a sky gradient, drifting slowly, the
+// matching sensor_msgs (Image, CameraInfo), and how the tests compare a converted frame with the
+// expected one. No data files needed.
 #pragma once
 
 #include <algorithm>
@@ -70,6 +71,9 @@ inline sensor_msgs::Image toImageMsg(const cv::Mat& bgr, const std::string& fram
   msg.header.seq = seq;
   return msg;
 }
+
+// The largest absolute difference between two frames' pixels (0: identical).
+inline double maxAbsDiff(const cv::Mat& a, const cv::Mat& b) { return cv::norm(a, b, cv::NORM_INF); }
 
 // Pinhole camera with a 60 degree horizontal field of view, no distortion.
 inline sensor_msgs::CameraInfo cameraInfo(const sensor_msgs::Image& image) {

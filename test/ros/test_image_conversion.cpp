@@ -22,10 +22,9 @@
 using obstacle_tracker::bridge::FrameConverter;
 using obstacle_tracker::bridge::MalformedImage;
 using obstacle_tracker::testing::imageMessage;
+using obstacle_tracker::testing::maxAbsDiff;
 
 namespace {
-
-double maxAbsDiff(const cv::Mat& a, const cv::Mat& b) { return cv::norm(a, b, cv::NORM_INF); }
 
 constexpr int kNone = -1;
 

@@ -23,14 +23,9 @@ using obstacle_tracker::bridge::CameraGeometry;
 using obstacle_tracker::bridge::FrameConverter;
 using obstacle_tracker::bridge::MalformedImage;
 using obstacle_tracker::testing::imageMessage;
+using obstacle_tracker::testing::maxAbsDiff;
 using obstacle_tracker::bridge::UnsupportedEncoding;
 namespace core = obstacle_tracker::core;
-
-namespace {
-
-double maxAbsDiff(const cv::Mat& a, const cv::Mat& b) { return cv::norm(a, b, cv::NORM_INF); }
-
-}  // namespace
 
 TEST(ImageConversion, EightBitEncodingsGiveTheSameBgrFrame) {
   const cv::Mat bgr = obstacle_tracker::testing::skyFrame(3, 64, 48);

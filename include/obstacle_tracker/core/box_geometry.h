@@ -1,9 +1,8 @@
 // Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
 //
-// Box geometry the core shares: centre, a box of a size centred at a point, intersection over
-// union (float, as the tracking loop compares boxes; the evaluation's own iou in metrics.h is the
-// OTB toolkit's double-precision one), the test a box must pass before its pixels are read, and
-// the pixels around a box.
+// Box geometry the core and the evaluation share: centre, a box of a size centred at a point,
+// whether a box stands for "no target", intersection over union, the test a box must pass before
+// its pixels are read, and the pixels around a box.
 #pragma once
 
 #include <algorithm>
@@ -20,10 +19,25 @@ inline cv::Rect2f boxCentredAt(const cv::Point2f& c, const cv::Size2f& s) {
   return {c.x - 0.5f * s.width, c.y - 0.5f * s.height, s.width, s.height};
 }
 
-inline float boxIou(const cv::Rect2f& a, const cv::Rect2f& b) {
-  const float inter = (a & b).area();
-  const float uni = a.area() + b.area() - inter;
-  return uni > 0.0f ? inter / uni : 0.0f;
+// True when a box stands for "no target": a NaN or an infinity anywhere, or a width or height <= 0.
+inline bool boxIsAbsent(const cv::Rect2f& b) {
+  // NaN compares false, so "!(w > 0)" also catches a NaN size.
+  return std::isnan(b.x) || std::isnan(b.y) || !(b.width > 0.0f) || !(b.height > 0.0f) ||
+         std::isinf(b.x) || std::isinf(b.y) || std::isinf(b.width) || std::isinf(b.height);
+}
+
+// Intersection over union in [0, 1]; 0 when either box is absent. Real is the arithmetic: float
+// where the tracking loop compares boxes (its decisions follow these bits), double for the
+// evaluation, whose scores must be the OTB toolkit's to stand beside published ones. Continuous
+// boxes: the toolkit's pixel-inclusive formula (right = x + w - 1, width = right - left + 1)
+// gives the same intersection and union.
+template <typename Real = float>
+Real boxIou(const cv::Rect2f& a, const cv::Rect2f& b) {
+  if (boxIsAbsent(a) || boxIsAbsent(b)) return Real(0);
+  const cv::Rect_<Real> ra(a), rb(b);
+  const Real inter = (ra & rb).area();
+  const Real uni = ra.area() + rb.area() - inter;
+  return uni > Real(0) ? inter / uni : Real(0);
 }
 
 // Finite, and at least a pixel on each side.

@@ -20,24 +20,25 @@
 //   whose box is within 20 px of the target (a correct start), and the false confident rate:
 //   frames whose box has confidence >= 0.5 and IoU 0 with the target (or the target is absent),
 //   over all frames -- the output a planner acting on confidence >= 0.5 must never get.
-// No ROS, no I/O: pure functions of boxes.
+// IoU is core::boxIou<double> (box_geometry.h), the same computation as the tracking loop's in
+// double precision. No ROS, no I/O: pure functions of boxes.
 #pragma once
 
 #include <vector>
 
 #include <opencv2/core/types.hpp>
 
+#include "obstacle_tracker/core/box_geometry.h"
+
 namespace obstacle_tracker {
 namespace eval {
 
-// True when a box stands for "no target" (any NaN, or width or height <= 0).
-bool isAbsent(const cv::Rect2f& box);
+// True when a box stands for "no target" (core::boxIsAbsent: a NaN or an infinity, or width or
+// height <= 0).
+inline bool isAbsent(const cv::Rect2f& box) { return core::boxIsAbsent(box); }
 
 // Distance between box centres, pixels. +inf when either box is absent.
 double centreError(const cv::Rect2f& a, const cv::Rect2f& b);
-
-// Intersection over union in [0, 1]. 0 when either box is absent.
-double iou(const cv::Rect2f& a, const cv::Rect2f& b);
 
 // Thresholds of the OTB curves.
 constexpr int kPrecisionThresholdCount = 51;  // 0, 1, ..., 50 px
