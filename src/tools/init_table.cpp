@@ -334,5 +334,5 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "init_table: error: %s\n", e.what());
     return 1;
   }
-  return 0;
+  return obstacle_tracker::tools::finishStandardOutput("init_table");
 }
