@@ -171,13 +171,13 @@ void AutoInitializer::Impl::confirm(const cv::Mat& frame) {
             [](const SalientRegion& a, const SalientRegion& b) { return a.score > b.score; });
 }
 
-AutoInitializer::AutoInitializer(const Params& params) : impl_(new Impl) { setParams(params); }
+AutoInitializer::AutoInitializer(const SaliencyParams& params) : impl_(new Impl) { setParams(params); }
 AutoInitializer::~AutoInitializer() { delete impl_; }
 
-void AutoInitializer::setParams(const Params& params) {
+void AutoInitializer::setParams(const SaliencyParams& params) {
   impl_->params = params;
-  validate(impl_->params);
-  Params refine = impl_->params;
+  clampGroup(impl_->params);
+  SaliencyParams refine = impl_->params;
   refine.search_window_scale = kRefineWindowScale;
   refine.min_object_area = 1.0;
   impl_->refiner.setParams(refine);

@@ -25,7 +25,7 @@ cv::Mat AutoInitializer::Impl::candidateMap(const cv::Mat& grey) {
     cv::resize(grey(cv::Rect(0, 0, half.cols * 2, half.rows * 2)), half, half.size(), 0, 0, cv::INTER_AREA);
   }
   cv::Mat sal = sal_arena.get(half.rows, half.cols, CV_8U);
-  Params mp = params;
+  SaliencyParams mp = params;
   mp.saliency_backgroundness = false;
   mp.saliency_postprocess = false;
   mp.saliency_median = 0;

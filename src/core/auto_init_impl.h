@@ -127,7 +127,7 @@ struct AutoInitializer::Impl {
   static constexpr int kLag = auto_init_detail::kLag;
   static constexpr std::size_t kMaxTracks = auto_init_detail::kMaxTracks;
 
-  Params params;
+  SaliencyParams params;
   MbdSaliency mbd;
   SaliencyDetector refiner;
   ExtentGrower extent;

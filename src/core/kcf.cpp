@@ -48,7 +48,7 @@ void checkBox(const cv::Mat& frame, const cv::Rect2f& box, const char* who) {
 
 }  // namespace
 
-KcfTracker::KcfTracker(const Params& params) : impl_(new Impl(params)) {}
+KcfTracker::KcfTracker(const TrackerParams& params) : impl_(new Impl(params)) {}
 
 KcfTracker::~KcfTracker() { delete impl_; }
 
@@ -69,7 +69,7 @@ void checkImpl(const void* impl) {
 }
 }  // namespace
 
-void KcfTracker::setParams(const Params& params) {
+void KcfTracker::setParams(const TrackerParams& params) {
   if (impl_ == nullptr) {
     impl_ = new Impl(params);
     return;
@@ -77,7 +77,7 @@ void KcfTracker::setParams(const Params& params) {
   impl_->setParams(params);
 }
 
-const Params& KcfTracker::params() const {
+const TrackerParams& KcfTracker::params() const {
   checkImpl(impl_);
   return impl_->params;
 }
@@ -100,7 +100,7 @@ namespace {
 // One tracking step: detection over the searched scales, refinement, and (when allowed and the
 // confidence reaches learn_threshold) learning. Leaves the refined features in m.zf for learn().
 KcfResult trackStep(KcfTracker::Impl& m, const cv::Mat& frame, bool allow_learning) {
-  const Params& p = m.params;
+  const TrackerParams& p = m.params;
 
   // Detect at each scale; keep the best (non-unit scales slightly penalised).
   int best = 0;

@@ -29,11 +29,9 @@ void KcfTracker::Impl::inverse(const cv::Mat& src, cv::Mat& dst) {
 // Same clamping as core::validate (NaN -> default, out of range -> nearest bound), written
 // against the parameter list directly so it allocates nothing: the pipeline may change
 // thresholds every frame.
-void KcfTracker::Impl::setParams(const Params& p) {
+void KcfTracker::Impl::setParams(const TrackerParams& p) {
   params = p;
-#define OT_KCF_CLAMP_(type, name, def, lo, hi, unit, doc) clampField(params.name, def, lo, hi);
-  OT_PARAMS(OT_KCF_CLAMP_)
-#undef OT_KCF_CLAMP_
+  clampGroup(params);
 }
 
 // Frame window (centre c, size ws) -> template patch (tw x th) (patch_sampler.h).

@@ -64,20 +64,11 @@ inline float confidenceOf(float peak, float psr) {
   return std::sqrt(c_peak * c_psr);
 }
 
-inline void clampField(double& v, double def, double lo, double hi) {
-  if (std::isnan(v)) v = def;
-  v = std::min(hi, std::max(lo, v));
-}
-inline void clampField(int& v, double def, double lo, double hi) {
-  (void)def;
-  v = std::min(static_cast<int>(hi), std::max(static_cast<int>(lo), v));
-}
-inline void clampField(bool& v, double, double, double) { (void)v; }
 
 }  // namespace kcf_detail
 
 struct KcfTracker::Impl {
-  Params params;
+  TrackerParams params;
   bool initialized = false;
 
   // Geometry, fixed at init.
@@ -130,12 +121,12 @@ struct KcfTracker::Impl {
   cv::Ptr<cv::hal::DFT2D> fwd_plan;  // real -> full complex spectrum
   cv::Ptr<cv::hal::DFT2D> inv_plan;  // conjugate-symmetric spectrum -> real, scaled by 1/N
 
-  explicit Impl(const Params& p) { setParams(p); }
+  explicit Impl(const TrackerParams& p) { setParams(p); }
 
   // kcf_filter.cpp
   void forward(const cv::Mat& src, cv::Mat& dst);
   void inverse(const cv::Mat& src, cv::Mat& dst);
-  void setParams(const Params& p);
+  void setParams(const TrackerParams& p);
   void extractPatch(const cv::Mat& frame, cv::Point2f c, cv::Size2f ws);
   float featuresSpectrum(const cv::Mat& frame, cv::Point2f c, cv::Size2f ws, cv::Mat& out_f);
   void gaussianCorrelation(const cv::Mat& xf, float xx, const cv::Mat& zf_in, float zz);

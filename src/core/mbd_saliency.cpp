@@ -54,7 +54,7 @@ void reconstructByDilation(cv::Mat& marker, const cv::Mat& mask, int max_passes 
 
 }  // namespace
 
-void MbdSaliency::compute(const cv::Mat& image, const Params& params, cv::Mat& out) {
+void MbdSaliency::compute(const cv::Mat& image, const SaliencyParams& params, cv::Mat& out) {
   requireFrame(image, "MbdSaliency::compute");
   const int rows = image.rows, cols = image.cols, cn = image.channels();
   cv::Mat src = image;

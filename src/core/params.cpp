@@ -112,6 +112,32 @@ bool setParam(Params& params, const std::string& name, double value, std::string
   return false;
 }
 
+namespace {
+
+// A group's field into its range, silently (NaN -> default; ints and bools as they are).
+void clampField(double& v, double def, double lo, double hi) {
+  if (std::isnan(v)) v = def;
+  v = std::min(hi, std::max(lo, v));
+}
+void clampField(int& v, double, double lo, double hi) {
+  v = std::min(static_cast<int>(hi), std::max(static_cast<int>(lo), v));
+}
+void clampField(bool&, double, double, double) {}
+
+}  // namespace
+
+void clampGroup(SaliencyParams& params) {
+#define OT_PARAMS_CLAMP_(type, name, def, lo, hi, unit, doc) clampField(params.name, def, lo, hi);
+  OT_SALIENCY_PARAMS(OT_PARAMS_CLAMP_)
+#undef OT_PARAMS_CLAMP_
+}
+
+void clampGroup(TrackerParams& params) {
+#define OT_PARAMS_CLAMP_(type, name, def, lo, hi, unit, doc) clampField(params.name, def, lo, hi);
+  OT_TRACKER_PARAMS(OT_PARAMS_CLAMP_)
+#undef OT_PARAMS_CLAMP_
+}
+
 std::vector<std::string> validate(Params& params) {
   std::vector<std::string> messages;
   for (const ParamInfo& info : paramTable()) {

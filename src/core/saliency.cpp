@@ -111,7 +111,7 @@ int RegionExtractor::labelComponents() {
   return next;
 }
 
-double RegionExtractor::extract(const cv::Mat& map, const Geometry& g, const Params& params,
+double RegionExtractor::extract(const cv::Mat& map, const Geometry& g, const SaliencyParams& params,
                                 std::vector<SalientRegion>& regions) {
   regions.clear();
   const int rows = map.rows, cols = map.cols;
@@ -174,7 +174,7 @@ double RegionExtractor::extract(const cv::Mat& map, const Geometry& g, const Par
 }
 
 struct SaliencyDetector::Impl {
-  Params params;
+  SaliencyParams params;
   MatArena small_arena, mid_arena, map_arena;
   MbdSaliency mbd;
   RegionExtractor extractor;
@@ -233,15 +233,15 @@ void warmUpLabTables() {
 }
 }  // namespace
 
-SaliencyDetector::SaliencyDetector(const Params& params) : impl_(new Impl) {
+SaliencyDetector::SaliencyDetector(const SaliencyParams& params) : impl_(new Impl) {
   warmUpLabTables();
   setParams(params);
 }
 SaliencyDetector::~SaliencyDetector() { delete impl_; }
 
-void SaliencyDetector::setParams(const Params& params) {
+void SaliencyDetector::setParams(const SaliencyParams& params) {
   impl_->params = params;
-  validate(impl_->params);
+  clampGroup(impl_->params);
 }
 
 const std::vector<SalientRegion>& SaliencyDetector::detect(const cv::Mat& frame) {

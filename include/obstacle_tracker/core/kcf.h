@@ -28,8 +28,9 @@ struct KcfResult {
 //   confidence = sqrt(c_peak * c_psr)
 // i.e. the geometric mean of the raw response peak (1 on the training sample itself) and the
 // peak-to-sidelobe ratio, each scaled to [0, 1]. Either a flat response (low PSR) or a weak peak
-// pulls the confidence down. The model learns only when confidence >= Params::learn_threshold;
-// the pipeline re-detects when the raw peak < Params::peak_threshold (the paper's test).
+// pulls the confidence down. The model learns only when confidence >=
+// TrackerParams::learn_threshold; the pipeline re-detects when the raw peak <
+// Params::peak_threshold (the paper's test).
 //
 // Bad input (empty frame, a type other than CV_8UC1/CV_8UC3, a box that is not finite, smaller
 // than 1x1 px, outside the frame or more than 16 times the frame's width or height) throws
@@ -46,7 +47,7 @@ class KcfTracker {
   static constexpr float kConfidencePsrZero = 5.0f;
   static constexpr float kConfidencePsrFull = 20.0f;
 
-  explicit KcfTracker(const Params& params = Params());
+  explicit KcfTracker(const TrackerParams& params = TrackerParams());
   ~KcfTracker();
   KcfTracker(const KcfTracker&) = delete;
   KcfTracker& operator=(const KcfTracker&) = delete;
@@ -55,7 +56,7 @@ class KcfTracker {
 
   // Takes effect at the next init (filter geometry) or update (rates, thresholds). Values are
   // clamped as core::validate does; no allocation, so it may be called every frame.
-  void setParams(const Params& params);
+  void setParams(const TrackerParams& params);
 
   // Starts (or restarts) the filter on box. frame: CV_8UC1 or CV_8UC3 (BGR).
   void init(const cv::Mat& frame, const cv::Rect2f& box);
@@ -86,7 +87,7 @@ class KcfTracker {
   cv::Rect2f box() const;
 
   // The validated parameters in use.
-  const Params& params() const;
+  const TrackerParams& params() const;
   // The confidence mapping above.
   static float confidenceFrom(float peak, float psr);
   // Cells of the filter template (cols x rows); empty before init.

@@ -20,19 +20,11 @@ namespace core {
 #define OT_LOOP_PARAMS(X)                                                                          \
   X(double, peak_threshold, 0.10, 0.0, 1.0, "",                                                    \
     "raw KCF response peak below which the track re-detects (the paper's test)")                  \
-  X(double, learn_threshold, 0.40, 0.0, 1.0, "",                                                   \
-    "confidence below which the filter model is not updated (keeps occluders out)")               \
-  X(double, search_window_scale, 3.0, 1.0, 20.0, "x box",                                          \
-    "side of the re-detection window as a multiple of the last box side")                         \
   X(int, detection_interval, 1, 1, 1000, "frames",                                                 \
     "frames between whole-frame saliency searches while searching")                               \
   X(int, max_obstacles, 1, 1, 16, "", "tracks kept at once (1 = the paper's single-target loop)") \
   X(int, max_redetect_failures, 15, 0, 10000, "frames",                                            \
     "failed re-detections before a track is declared lost")                                       \
-  X(double, min_object_area, 12.0, 1.0, 1.0e6, "px^2",                                             \
-    "smallest salient region (in full-frame pixels) taken as an object")                          \
-  X(double, max_object_area_fraction, 0.25, 0.0001, 1.0, "",                                       \
-    "largest salient region, as a fraction of the frame area")                                    \
   X(double, merge_iou, 0.5, 0.0, 1.0, "", "tracks overlapping more than this IoU are merged")      \
   X(double, looming_rate_noise, 0.3, 0.0, 10.0, "1/s^1.5",                                        \
     "process noise of the expansion rate in the looming filter (how fast closing may change)")    \
@@ -53,6 +45,12 @@ namespace core {
 
 // Saliency detector (FastMBD, Otsu, regions, auto-initialisation).
 #define OT_SALIENCY_PARAMS(X)                                                                      \
+  X(double, search_window_scale, 3.0, 1.0, 20.0, "x box",                                          \
+    "side of the re-detection window as a multiple of the last box side")                         \
+  X(double, min_object_area, 12.0, 1.0, 1.0e6, "px^2",                                             \
+    "smallest salient region (in full-frame pixels) taken as an object")                          \
+  X(double, max_object_area_fraction, 0.25, 0.0001, 1.0, "",                                       \
+    "largest salient region, as a fraction of the frame area")                                    \
   X(int, saliency_max_side, 300, 32, 4096, "px",                                                   \
     "longer side of the image the whole-frame saliency map is computed on")                       \
   X(int, saliency_passes, 3, 1, 10, "", "raster-scan passes of FastMBD")                           \
@@ -91,6 +89,8 @@ namespace core {
 // Kernelized correlation filter and scale.
 #define OT_TRACKER_PARAMS(X)                                                                       \
   X(double, learning_rate, 0.01, 0.0, 1.0, "", "model interpolation factor per frame (eta)")       \
+  X(double, learn_threshold, 0.40, 0.0, 1.0, "",                                                   \
+    "confidence below which the filter model is not updated (keeps occluders out)")               \
   X(double, kcf_padding, 1.5, 0.0, 5.0, "x box", "context around the box in the filter window")    \
   X(int, kcf_template_size, 96, 32, 256, "px", "longer side of the resized filter window")         \
   X(int, kcf_cell_size, 4, 1, 8, "px", "HOG cell size")                                            \
@@ -109,11 +109,22 @@ namespace core {
 
 #define OT_PARAMS(X) OT_LOOP_PARAMS(X) OT_SALIENCY_PARAMS(X) OT_TRACKER_PARAMS(X)
 
-struct Params {
+// One struct per group, so that a component takes only its own (the correlation filter its
+// TrackerParams, saliency and auto-initialisation their SaliencyParams); Params holds them all,
+// for the pipeline, the loaders and the tools.
 #define OT_PARAMS_DECLARE_(type, name, def, lo, hi, unit, doc) type name = def;
-  OT_PARAMS(OT_PARAMS_DECLARE_)
-#undef OT_PARAMS_DECLARE_
+struct LoopParams {
+  OT_LOOP_PARAMS(OT_PARAMS_DECLARE_)
 };
+struct SaliencyParams {
+  OT_SALIENCY_PARAMS(OT_PARAMS_DECLARE_)
+};
+struct TrackerParams {
+  OT_TRACKER_PARAMS(OT_PARAMS_DECLARE_)
+};
+#undef OT_PARAMS_DECLARE_
+
+struct Params : LoopParams, SaliencyParams, TrackerParams {};
 
 // One row of the parameter table, for tools that list, load or expose parameters by name.
 struct ParamInfo {
@@ -140,6 +151,9 @@ bool setParam(Params& params, const std::string& name, double value, std::string
 
 // Clamps every field into its range (NaN -> default). Returns one message per changed field.
 std::vector<std::string> validate(Params& params);
+// The same for one group's fields, without messages (a component's own copy of its group).
+void clampGroup(SaliencyParams& params);
+void clampGroup(TrackerParams& params);
 
 // Loads a flat YAML/JSON map of parameter names to values (flat_yaml.h), on top of `base`.
 // Unknown keys and bad values produce messages, never an exception; a file that cannot be read

@@ -26,12 +26,12 @@ struct SalientRegion {
 
 class SaliencyDetector {
  public:
-  explicit SaliencyDetector(const Params& params = Params());
+  explicit SaliencyDetector(const SaliencyParams& params = SaliencyParams());
   ~SaliencyDetector();
   SaliencyDetector(const SaliencyDetector&) = delete;
   SaliencyDetector& operator=(const SaliencyDetector&) = delete;
 
-  void setParams(const Params& params);
+  void setParams(const SaliencyParams& params);
 
   // Whole-frame detection. frame: CV_8UC1 (grey/thermal) or CV_8UC3 (BGR), non-empty.
   // Returns the salient regions ranked best first (empty when nothing qualifies). Throws
@@ -64,12 +64,12 @@ class AutoInitializer {
   // A candidate or track with this share of its pixels on the overlay mask is part of the overlay.
   static constexpr double kOverlayShare = 0.5;
 
-  explicit AutoInitializer(const Params& params = Params());
+  explicit AutoInitializer(const SaliencyParams& params = SaliencyParams());
   ~AutoInitializer();
   AutoInitializer(const AutoInitializer&) = delete;
   AutoInitializer& operator=(const AutoInitializer&) = delete;
 
-  void setParams(const Params& params);
+  void setParams(const SaliencyParams& params);
   void reset();
   const std::vector<SalientRegion>& update(const cv::Mat& frame, double stamp);
 

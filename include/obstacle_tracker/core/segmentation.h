@@ -28,12 +28,12 @@ class MatArena {
 
 // MBD saliency map (CV_8U, 0..255, max-normalised) of `image` (CV_8UC1 or CV_8UC3 BGR), computed
 // at the image's own resolution. Colour: CIE Lab (8-bit OpenCV scaling), the three channel MBD
-// maps summed. Options from Params: saliency_median, saliency_passes,
+// maps summed. Options from SaliencyParams: saliency_median, saliency_passes,
 // saliency_backgroundness, saliency_postprocess.
 class MbdSaliency {
  public:
   // `out` must be a CV_8UC1 Mat of image.size() (a view is fine); it is written in place.
-  void compute(const cv::Mat& image, const Params& params, cv::Mat& out);
+  void compute(const cv::Mat& image, const SaliencyParams& params, cv::Mat& out);
 
  private:
   void sumChannels(const cv::Mat& dist, int cn, cv::Mat& f);
@@ -56,7 +56,7 @@ class RegionExtractor {
     bool centre_prior = false;       // windowed mode: favour regions near the map centre
   };
   // Returns the Otsu threshold used.
-  double extract(const cv::Mat& map, const Geometry& geometry, const Params& params,
+  double extract(const cv::Mat& map, const Geometry& geometry, const SaliencyParams& params,
                  std::vector<SalientRegion>& regions);
   const cv::Mat& binary() const { return binary_; }
 
