@@ -8,25 +8,9 @@
 #   usage: score_boxes_cli.sh PATH/TO/score_boxes
 set -uo pipefail
 TOOL=${1:?usage: score_boxes_cli.sh PATH/TO/score_boxes}
-TMP=$(mktemp -d /tmp/ot_score_boxes_XXXXXX)
-trap 'rm -rf "$TMP"' EXIT
-failures=0
-
-# expect CODE PATTERN ARGS...: the tool exits with CODE and its standard error (or, for code 0,
-# its standard output) matches the extended regex PATTERN.
-expect() {
-  local code=$1 pattern=$2 got
-  shift 2
-  "$TOOL" "$@" > "$TMP/out" 2> "$TMP/err"
-  got=$?
-  local text=$TMP/err
-  [ "$code" -eq 0 ] && text=$TMP/out
-  if [ "$got" -ne "$code" ] || ! grep -Eq -- "$pattern" "$text"; then
-    echo "FAILED: score_boxes $*: exit $got (want $code), output does not match '$pattern':"
-    cat "$TMP/out" "$TMP/err"
-    failures=$((failures + 1))
-  fi
-}
+TOOL_NAME=score_boxes
+# shellcheck source=cli_checks.sh
+source "$(dirname "${BASH_SOURCE[0]}")/cli_checks.sh"
 
 printf '10,10,20,20\n0,0,0,0\n30,30,10,10\n' > "$TMP/gt.txt"
 printf '10,10,20,20,0.9\n0,0,0,0,0\n30,30,10,10,0.8\n' > "$TMP/same.txt"

@@ -8,25 +8,9 @@
 set -uo pipefail
 TOOL=${1:?usage: track_sequence_cli.sh PATH/TO/track_sequence}
 GENERATE=$(dirname "$TOOL")/generate_scene
-TMP=$(mktemp -d /tmp/ot_track_sequence_XXXXXX)
-trap 'rm -rf "$TMP"' EXIT
-failures=0
-
-# expect CODE PATTERN ARGS...: the tool exits with CODE and its standard error matches the
-# extended regex PATTERN (for code 0: its standard output).
-expect() {
-  local code=$1 pattern=$2 got
-  shift 2
-  "$TOOL" "$@" > "$TMP/out" 2> "$TMP/err"
-  got=$?
-  local text=$TMP/err
-  [ "$code" -eq 0 ] && text=$TMP/out
-  if [ "$got" -ne "$code" ] || ! grep -Eq -- "$pattern" "$text"; then
-    echo "FAILED: track_sequence $*: exit $got (want $code), output does not match '$pattern':"
-    cat "$TMP/out" "$TMP/err"
-    failures=$((failures + 1))
-  fi
-}
+TOOL_NAME=track_sequence
+# shellcheck source=cli_checks.sh
+source "$(dirname "${BASH_SOURCE[0]}")/cli_checks.sh"
 
 if ! "$GENERATE" --scenario crossing --frames 12 --size 320x240 --quiet --out "$TMP/scene" > /dev/null; then
   echo "FAILED: generate_scene could not make the test scene"
