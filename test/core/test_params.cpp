@@ -4,6 +4,7 @@
 #include <limits>
 #include <sstream>
 #include <string>
+#include <type_traits>
 
 #include <gtest/gtest.h>
 
@@ -69,6 +70,52 @@ TEST(Params, ValidateClampsEveryField) {
   EXPECT_EQ(p.kcf_cell_size, 1);
   EXPECT_DOUBLE_EQ(p.learning_rate, oc::Params().learning_rate);
   EXPECT_DOUBLE_EQ(p.scale_step, 1.5);
+}
+
+// A component's own group is clamped on arrival (clampGroup) as validate() clamps the whole
+// Params: every field of the group pushed below its minimum, above its maximum and (doubles) to
+// NaN comes back as validate() makes it.
+template <typename Group>
+void expectGroupClampsLikeValidate(const oc::Params& pushed) {
+  Group group = pushed;
+  oc::clampGroup(group);
+  oc::Params whole = pushed;
+  oc::validate(whole);
+  const Group& expected = whole;
+  oc::Params from_group;
+  static_cast<Group&>(from_group) = group;
+  oc::Params from_whole;
+  static_cast<Group&>(from_whole) = expected;
+  for (const oc::ParamInfo& info : oc::paramTable()) {
+    EXPECT_EQ(oc::getParam(from_group, info.name), oc::getParam(from_whole, info.name)) << info.name;
+  }
+}
+
+// Every double and int field at `offset` from the bound `bound` (or NaN for doubles).
+oc::Params pushedTo(double oc::ParamInfo::*bound, double offset, bool nan) {
+  oc::Params p;
+#define OT_TEST_PUSH_(type, name, def, lo, hi, unit, doc)                                 \
+  {                                                                                       \
+    const oc::ParamInfo* info = oc::findParam(#name);                                     \
+    const double v = nan ? std::numeric_limits<double>::quiet_NaN() : info->*bound + offset; \
+    if constexpr (std::is_same_v<type, double>) {                                         \
+      p.name = v;                                                                         \
+    } else if constexpr (std::is_same_v<type, int>) {                                     \
+      if (!nan) p.name = static_cast<int>(v);                                             \
+    }                                                                                     \
+  }
+  OT_PARAMS(OT_TEST_PUSH_)
+#undef OT_TEST_PUSH_
+  return p;
+}
+
+TEST(Params, GroupsClampLikeValidate) {
+  for (const oc::Params& pushed : {pushedTo(&oc::ParamInfo::min_value, -1.0, false),
+                                   pushedTo(&oc::ParamInfo::max_value, 1.0, false),
+                                   pushedTo(&oc::ParamInfo::min_value, 0.0, true)}) {
+    expectGroupClampsLikeValidate<oc::SaliencyParams>(pushed);
+    expectGroupClampsLikeValidate<oc::TrackerParams>(pushed);
+  }
 }
 
 TEST(Params, YamlLoaderReportsBadValuesAndNeverThrowsOnContent) {
