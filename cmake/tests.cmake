@@ -33,3 +33,7 @@ foreach(script ${OT_TOOL_TESTS})
     set_tests_properties(${name} PROPERTIES LABELS tools TIMEOUT 60)
   endif()
 endforeach()
+# track_sequence_cli.sh renders its input with generate_scene, taken from beside track_sequence.
+if(TARGET track_sequence AND TARGET generate_scene)
+  add_dependencies(tests generate_scene)
+endif()
