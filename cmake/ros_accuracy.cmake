@@ -74,7 +74,7 @@ if(EXISTS ${OT_ACCURACY_SHARED}/groundtruth_rect.txt)
     COMMENT "accuracy rostest: ${OT_ACCURACY_SEQUENCE} -> accuracy/real.bag"
     VERBATIM)
   list(APPEND OT_ACCURACY_BAGS ${OT_ACCURACY_DIR}/real.bag)
-  set(OT_ACCURACY_REAL_ARGS bag:=${OT_ACCURACY_DIR}/real.bag name:=${OT_ACCURACY_SEQUENCE} ${OT_ACCURACY_REAL_BARS})
+  set(OT_ACCURACY_REAL_ARGS name:=${OT_ACCURACY_SEQUENCE} bag:=${OT_ACCURACY_DIR}/real.bag ${OT_ACCURACY_REAL_BARS})
 else()
   set(OT_ACCURACY_REAL_ARGS name:=${OT_ACCURACY_SEQUENCE} missing:=${OT_ACCURACY_SHARED})
 endif()
@@ -87,11 +87,14 @@ set_target_properties(accuracy_node PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${OT_ROS
 add_dependencies(accuracy_node ${PROJECT_NAME}_generate_messages_cpp)
 add_dependencies(tests accuracy_node)
 
+# name:= first: rostest names a test's result file after its arguments up to the first '.', and a
+# build path with a dot in it (a mktemp folder) gave both scene tests the same file, which the one
+# finishing last overwrote while the other's result was being read (ctest -j).
 add_rostest(test/ros/accuracy/accuracy_scene.test
-  ARGS bag:=${OT_ACCURACY_DIR}/scene.bag name:=scene ${OT_ACCURACY_SCENE_BARS}
+  ARGS name:=scene bag:=${OT_ACCURACY_DIR}/scene.bag ${OT_ACCURACY_SCENE_BARS}
   DEPENDENCIES obstacle_tracker_nodelet accuracy_node accuracy_bags)
 add_rostest(test/ros/accuracy/accuracy_scene.test
-  ARGS bag:=${OT_ACCURACY_DIR}/scene_720.bag name:=scene_720 pace:=realtime ${OT_ACCURACY_SCENE_720_BARS}
+  ARGS name:=scene_720 bag:=${OT_ACCURACY_DIR}/scene_720.bag pace:=realtime ${OT_ACCURACY_SCENE_720_BARS}
   DEPENDENCIES obstacle_tracker_nodelet accuracy_node accuracy_bags)
 add_rostest(test/ros/accuracy/accuracy_real.test ARGS ${OT_ACCURACY_REAL_ARGS}
   DEPENDENCIES obstacle_tracker_nodelet accuracy_node accuracy_bags)
