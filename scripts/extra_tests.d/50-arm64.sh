@@ -3,8 +3,9 @@
 #
 # ARM64: the core, its IO-free tools and the core's GoogleTest suite cross-built with Debian's
 # multiarch packages (cmake/aarch64-linux-gnu.cmake) and run under qemu-user (any failure fails
-# this step); then scene_boxes tracks the same generated frames on arm64 and on this machine and
-# the OTB scores and per-frame boxes are compared and reported. Installs what it needs on first
+# this step); then scene_boxes tracks the same generated frames on arm64 and on this machine: the
+# OTB scores must agree within 0.02 (they are expected identical: the core's arithmetic rounds the
+# same on both, docs/portability.md), and the identical per-frame lines are counted. Installs what it needs on first
 # use (dpkg --add-architecture arm64; root or sudo).
 #   OT_BUILD_DIR        the native build with scene_boxes (default _build)
 #   OT_ARM64_BUILD_DIR  the cross-build (default _build/arm64)
@@ -47,10 +48,8 @@ NATIVE=$BUILD/devel/lib/obstacle_tracker/scene_boxes
 [ -x "$NATIVE" ] || NATIVE=$BUILD/scene_boxes
 TMP=$(mktemp -d /tmp/ot_arm64_XXXXXX)
 trap 'rm -rf "$TMP"' EXIT
-# Reported, not asserted: OpenCV's DFT rounds differently on NEON than on SSE (its x86 build has
-# vectorised butterflies, its arm64 build plain C), so the filters drift apart from the second
-# frame; where a scale decision flips the scores differ by more than 0.02 (docs/portability.md).
-# OT_ARM64_STRICT=1 makes a difference above 0.02 fail.
+# Scores within 0.02, as across OpenCV's dispatch settings (45-stable-numbers); the boxes are
+# expected bit-identical, and the count of identical lines shows how far they are.
 status=0
 for scene in "crossing+jerk 480x360" "bird 480x360" "approach 640x480"; do
   set -- $scene
@@ -64,7 +63,7 @@ for scene in "crossing+jerk 480x360" "bird 480x360" "approach 640x480"; do
     read -r _ _ _ p_arm _ auc_arm < <(tail -1 "$TMP/arm64.txt")
     verdict=$(awk -v a="$auc_native" -v b="$auc_arm" 'BEGIN { d = a - b; if (d < 0) d = -d; print (d <= 0.02) ? "within 0.02" : "DIFFERS" }')
     echo "$verdict: $1 $2 --init $init: AUC $auc_native ($(uname -m)) vs $auc_arm (arm64), precision $p_native vs $p_arm; $same of $total lines identical"
-    if [ "$verdict" != "within 0.02" ] && [ "${OT_ARM64_STRICT:-0}" = 1 ]; then status=1; fi
+    if [ "$verdict" != "within 0.02" ]; then status=1; fi
   done
 done
 exit $status

@@ -147,8 +147,7 @@ KcfResult trackStep(KcfTracker::Impl& m, const cv::Mat& frame, bool allow_learni
   // correlation; the training sample is then off by the residual only (a few hundredths of a cell).
   const float zz = m.featuresSpectrum(frame, m.center, m.window, m.zf);
   m.gaussianCorrelation(m.model_xf, m.model_xx, m.zf, zz);
-  cv::mulSpectrums(m.kf, m.model_alphaf, m.resp_f, 0, false);
-  m.inverse(m.resp_f, m.resp[0]);
+  m.kernelResponse(m.resp[0]);
   cv::Point loc;
   cv::minMaxLoc(m.resp[0], nullptr, nullptr, nullptr, &loc);
   const cv::Point2f residual = m.subCellPeak(m.resp[0], loc);

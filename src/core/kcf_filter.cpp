@@ -16,15 +16,9 @@ namespace core {
 
 using namespace kcf_detail;  // NOLINT(build/namespaces): the filter's own constants and helpers
 
-void KcfTracker::Impl::forward(const cv::Mat& src, cv::Mat& dst) {
-  dst.create(rows, cols, CV_32FC2);
-  fwd_plan->apply(src.data, src.step, dst.data, dst.step);
-}
+void KcfTracker::Impl::forward(const cv::Mat& src, cv::Mat& dst) { fft.forward(src, dst); }
 
-void KcfTracker::Impl::inverse(const cv::Mat& src, cv::Mat& dst) {
-  dst.create(rows, cols, CV_32F);
-  inv_plan->apply(src.data, src.step, dst.data, dst.step);
-}
+void KcfTracker::Impl::inverse(const cv::Mat& src, cv::Mat& dst) { fft.inverse(src, dst); }
 
 // Same clamping as core::validate (NaN -> default, out of range -> nearest bound), written
 // against the parameter list directly so it allocates nothing: the pipeline may change
@@ -132,9 +126,7 @@ void KcfTracker::Impl::buildGeometry(const cv::Mat& frame, const cv::Rect2f& box
       y.at<float>(r, c) = std::exp(-0.5f * static_cast<float>(dr * dr + dc * dc) / (sigma * sigma));
     }
   }
-  fwd_plan = cv::hal::DFT2D::create(cols, rows, CV_32F, 1, 2, cv::DFT_COMPLEX_OUTPUT);
-  inv_plan = cv::hal::DFT2D::create(cols, rows, CV_32F, 2, 1,
-                                    cv::DFT_INVERSE | cv::DFT_REAL_OUTPUT | cv::DFT_SCALE);
+  fft.configure(rows, cols);
   forward(y, yf);
   corr_f.create(rows, cols, CV_32FC2);
   corr.create(rows, cols, CV_32F);
@@ -197,7 +189,13 @@ void KcfTracker::Impl::trainOnSpectrum(float xx, float eta) {
 void KcfTracker::Impl::respond(const cv::Mat& frame, cv::Point2f c, cv::Size2f ws, cv::Mat& out) {
   const float zz = featuresSpectrum(frame, c, ws, zf);
   gaussianCorrelation(model_xf, model_xx, zf, zz);
-  cv::mulSpectrums(kf, model_alphaf, resp_f, 0, false);
+  kernelResponse(out);
+}
+
+// The response for the kernel spectrum kf: F^-1(kf .* alpha^) (eq. 22 after the correlation).
+void KcfTracker::Impl::kernelResponse(cv::Mat& out) {
+  resp_f.create(rows, cols, CV_32FC2);
+  multiplySpectra(kf.ptr<float>(), model_alphaf.ptr<float>(), resp_f.ptr<float>(), rows * cols);
   inverse(resp_f, out);
 }
 

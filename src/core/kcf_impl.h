@@ -16,8 +16,9 @@
 #include <cmath>
 #include <vector>
 
-#include <opencv2/core/hal/hal.hpp>
+#include <opencv2/core.hpp>
 
+#include "obstacle_tracker/core/fft.h"
 #include "obstacle_tracker/core/fhog.h"
 #include "obstacle_tracker/core/kcf.h"
 #include "obstacle_tracker/core/patch_sampler.h"
@@ -53,6 +54,16 @@ inline void accumulateConjProduct(const float* a, const float* b, float* acc, in
     const float ar = a[i], ai = a[i + 1], br = b[i], bi = b[i + 1];
     acc[i] += ar * br + ai * bi;
     acc[i + 1] += ai * br - ar * bi;
+  }
+}
+
+// out = a .* b, over `count` complex values (not cv::mulSpectrums, whose arm64 build fuses the
+// multiply and the add: fft.h).
+inline void multiplySpectra(const float* a, const float* b, float* out, int count) {
+  for (int i = 0; i < 2 * count; i += 2) {
+    const float ar = a[i], ai = a[i + 1], br = b[i], bi = b[i + 1];
+    out[i] = ar * br - ai * bi;
+    out[i + 1] = ar * bi + ai * br;
   }
 }
 
@@ -115,11 +126,10 @@ struct KcfTracker::Impl {
   cv::Mat scale_new_den;
   cv::Mat scale_yf;                // 1 x S, CV_32FC2
   cv::Mat scale_resp_f, scale_resp;
-  cv::Ptr<cv::hal::DFT2D> scale_fwd_plan, scale_inv_plan;
+  RealFft2d scale_fft;             // 1 x S: each row's spectrum, and the response's inverse
 
-  // DFT plans made once per template size (cv::dft builds and frees a plan on every call).
-  cv::Ptr<cv::hal::DFT2D> fwd_plan;  // real -> full complex spectrum
-  cv::Ptr<cv::hal::DFT2D> inv_plan;  // conjugate-symmetric spectrum -> real, scaled by 1/N
+  // The template's transforms (fft.h: the same bits on every machine, unlike cv::dft).
+  RealFft2d fft;
 
   explicit Impl(const TrackerParams& p) { setParams(p); }
 
@@ -134,6 +144,7 @@ struct KcfTracker::Impl {
   void train(const cv::Mat& frame, float eta);
   void trainOnSpectrum(float xx, float eta);
   void respond(const cv::Mat& frame, cv::Point2f c, cv::Size2f ws, cv::Mat& out);
+  void kernelResponse(cv::Mat& out);
   cv::Point2f subCellPeak(const cv::Mat& r, cv::Point p) const;
   float psrOf(const cv::Mat& r, cv::Point p, float peak) const;
   float applyScale(float f);

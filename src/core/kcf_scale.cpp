@@ -26,7 +26,7 @@ void KcfTracker::Impl::scaleSamples(const cv::Mat& frame, cv::Point2f c, cv::Siz
     const float w = scale_window[n];
     for (int d = 0; d < scale_dim; ++d) scale_x.at<float>(d, n) = src[d] * w;
   }
-  scale_fwd_plan->apply(scale_x.data, scale_x.step, scale_xf.data, scale_xf.step);
+  scale_fft.forwardEachRow(scale_x, scale_xf);
 }
 
 // Trains the scale filter on samples at the current centre and size (rate eta; 1 = replace).
@@ -73,7 +73,7 @@ float KcfTracker::Impl::detectScale(const cv::Mat& frame) {
     rf[2 * n] *= inv;
     rf[2 * n + 1] *= inv;
   }
-  scale_inv_plan->apply(scale_resp_f.data, scale_resp_f.step, scale_resp.data, scale_resp.step);
+  scale_fft.inverse(scale_resp_f, scale_resp);
   const float* r = scale_resp.ptr<float>();
   int best = 0;
   for (int n = 1; n < scale_n; ++n) {
@@ -154,12 +154,8 @@ void KcfTracker::Impl::buildScaleFilter(const cv::Mat& frame) {
     const float d = static_cast<float>(n) - (scale_n - 1) * 0.5f;
     ys.at<float>(0, n) = std::exp(-0.5f * d * d / (sigma * sigma));
   }
-  cv::dft(ys, scale_yf, cv::DFT_COMPLEX_OUTPUT | cv::DFT_ROWS);
-  scale_fwd_plan = cv::hal::DFT2D::create(scale_n, scale_dim, CV_32F, 1, 2,
-                                          cv::DFT_ROWS | cv::DFT_COMPLEX_OUTPUT);
-  scale_inv_plan = cv::hal::DFT2D::create(scale_n, 1, CV_32F, 2, 1,
-                                          cv::DFT_ROWS | cv::DFT_INVERSE | cv::DFT_REAL_OUTPUT |
-                                              cv::DFT_SCALE);
+  scale_fft.configure(1, scale_n);
+  scale_fft.forwardEachRow(ys, scale_yf);
   sampler.reserve(sm_w, sm_h, frame.type(), frame.cols);
   trainScale(frame, 1.0f);
 }
