@@ -88,6 +88,7 @@ void KcfTracker::init(const cv::Mat& frame, const cv::Rect2f& box) {
   checkBox(frame, box, "KcfTracker::init");
   impl_->initialized = false;
   impl_->cached_valid = false;
+  impl_->scale_votes = 0;
   impl_->buildGeometry(frame, box);
   impl_->train(frame, 1.0f);
   impl_->calibrateScales(frame);
@@ -121,6 +122,7 @@ KcfResult trackStep(KcfTracker::Impl& m, const cv::Mat& frame, bool allow_learni
       best_loc = loc;
     }
   }
+  if (count > 1) best = m.confirmScale(best, best_loc);
   const cv::Mat& r = m.resp[best];
   const float s = m.scales[best];
   KcfResult result;
@@ -188,6 +190,13 @@ void KcfTracker::shiftSearch(const cv::Point2f& offset) {
   if (!impl_->initialized) throw std::logic_error("KcfTracker::shiftSearch: not initialised");
   if (!std::isfinite(offset.x) || !std::isfinite(offset.y)) return;
   impl_->center += offset;  // kept on the frame by the next step (trackStep clamps the centre)
+}
+
+void KcfTracker::setSizeTrend(int trend) {
+  checkImpl(impl_);
+  if (trend < -1 || trend > 1) throw std::invalid_argument("KcfTracker::setSizeTrend: trend must be -1, 0 or +1");
+  impl_->size_trend = trend;
+  impl_->have_size_trend = true;
 }
 
 KcfResult KcfTracker::detect(const cv::Mat& frame) {

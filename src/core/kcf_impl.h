@@ -109,6 +109,9 @@ struct KcfTracker::Impl {
   cv::Mat new_alphaf;
   // Features of the last tracking step at the tracked box, kept for learn().
   bool cached_valid = false;
+  int scale_votes = 0;  // confirmScale(): frames in a row a larger (> 0) or smaller (< 0) scale won
+  bool have_size_trend = false;  // setSizeTrend() was called
+  int size_trend = 0;            // its last trend: +1 growing, -1 shrinking, 0 none
   float cached_zz = 0.0f;
 
   // DSST scale filter (Danelljan et al., BMVC 2014): one column of fHOG features per scale.
@@ -148,6 +151,7 @@ struct KcfTracker::Impl {
   cv::Point2f subCellPeak(const cv::Mat& r, cv::Point p) const;
   float psrOf(const cv::Mat& r, cv::Point p, float peak) const;
   float applyScale(float f);
+  int confirmScale(int best, cv::Point& best_loc);
   cv::Rect2f boxAt(cv::Point2f c, cv::Size2f s) const;
 
   // kcf_scale.cpp

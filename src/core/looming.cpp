@@ -1,7 +1,9 @@
 // Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
 #include "obstacle_tracker/core/looming.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace obstacle_tracker {
 namespace core {
@@ -22,6 +24,7 @@ void LoomingEstimator::setParams(double rate_noise, bool use_pixels) {
 
 void LoomingEstimator::start(const cv::Mat& frame, double stamp, const cv::Rect2f& box) {
   filter_.reset(stamp, sizeOf(box), kStartSigma);
+  recent_count_ = 0;
   meter_.reset();
   if (use_pixels_) meter_.setReference(frame, box);
 }
@@ -34,9 +37,31 @@ void LoomingEstimator::track(const cv::Mat& frame, double stamp, const cv::Rect2
   filter_.predict(stamp);
   ExpansionMeasurement m;
   if (use_pixels_) m = meter_.measure(frame, centreOf(box));
+  recordExpansion(m);
   // The box size stands in for an expansion that was not measured or was dropped as an outlier.
   if (!m.valid || !filter_.updateExpansion(m.log_ratio, m.sigma)) filter_.updateSize(sizeOf(box), kBoxSizeSigma);
   if (use_pixels_) meter_.setReference(frame, box);
+}
+
+void LoomingEstimator::recordExpansion(const ExpansionMeasurement& m) {
+  const bool usable = m.valid && std::isfinite(m.log_ratio);
+  recent_[static_cast<std::size_t>(recent_count_ % kTrendFrames)] =
+      usable ? m.log_ratio : std::numeric_limits<double>::quiet_NaN();
+  ++recent_count_;
+}
+
+int LoomingEstimator::sizeTrend() const {
+  const int frames = std::min(recent_count_, kTrendFrames);
+  double sum = 0.0;
+  int measured = 0;
+  for (int i = 0; i < frames; ++i) {
+    const double v = recent_[static_cast<std::size_t>(i)];
+    if (std::isnan(v)) continue;
+    sum += v;
+    ++measured;
+  }
+  if (2 * measured < kTrendFrames) return 0;
+  return sum > kTrendLogSize ? 1 : (sum < -kTrendLogSize ? -1 : 0);
 }
 
 void LoomingEstimator::restart(const cv::Mat& frame, double stamp, const cv::Rect2f& box) {
@@ -46,6 +71,7 @@ void LoomingEstimator::restart(const cv::Mat& frame, double stamp, const cv::Rec
   }
   filter_.predict(stamp);
   filter_.restartSize(sizeOf(box), kStartSigma);
+  recent_count_ = 0;  // no expansion is measured across the gap
   if (use_pixels_) meter_.setReference(frame, box);
 }
 

@@ -259,6 +259,7 @@ void Pipeline::Impl::step(Track& t, const cv::Mat& frame, double stamp) {
   bridgeDroppedFrames(t, frame);
   // The filter first, in both states (re-detecting: without learning).
   configureFilter(t, t.state == TrackState::kTracking);
+  t.kcf.setSizeTrend(t.looming.sizeTrend());
   const KcfResult r = t.kcf.update(frame);
   t.result = r;
   // A box mostly outside the frame is an obstacle leaving the view: the filter's answer there

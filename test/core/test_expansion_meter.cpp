@@ -1,7 +1,8 @@
 // Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
 //
 // Known answers for the expansion measured from the object's pixels (expansion_meter.h,
-// scale_alignment.h): objects drawn at known sizes and positions on a background.
+// scale_alignment.h) and the size trend summed from it (looming.h): objects drawn at known sizes
+// and positions on a background.
 #include <cmath>
 #include <random>
 #include <stdexcept>
@@ -10,6 +11,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "obstacle_tracker/core/expansion_meter.h"
+#include "obstacle_tracker/core/looming.h"
 #include "obstacle_tracker/core/scale_alignment.h"
 
 using obstacle_tracker::core::ExpansionMeasurement;
@@ -163,4 +165,38 @@ TEST(ExpansionMeter, PartlyOccludedObject) {
   const ExpansionMeasurement m = meter.measure(next, c);
   ASSERT_TRUE(m.valid);
   EXPECT_NEAR(m.log_ratio, std::log(63.0 / 60.0), 0.012);
+}
+
+// The size trend a looming estimate hands the correlation filter (looming.h): the pixel
+// expansions of the last frames, summed. 1.2 % a frame adds up to 0.12 over 10 frames (+1); a
+// constant size to about 0 (0); the reverse to -1. Fewer than half the frames measured, or a
+// restart, is no trend.
+TEST(LoomingTrend, GrowingConstantAndShrinking) {
+  const cv::Mat tex = objectTexture(21, 1);
+  const cv::Point2f c(160.0f, 120.0f);
+  for (double per_frame : {1.012, 1.0, 1.0 / 1.012}) {
+    obstacle_tracker::core::LoomingEstimator looming;
+    float side = 50.0f;
+    looming.start(frameWith(tex, c, side), 0.0, boxAt(c, side));
+    const int expected = per_frame > 1.001 ? 1 : (per_frame < 0.999 ? -1 : 0);
+    for (int k = 1; k <= 12; ++k) {
+      side = static_cast<float>(side * per_frame);
+      looming.track(frameWith(tex, c, side), k / 30.0, boxAt(c, side));
+      if (k < obstacle_tracker::core::LoomingEstimator::kTrendFrames / 2) {
+        EXPECT_EQ(looming.sizeTrend(), 0) << "frame " << k;
+      }
+    }
+    EXPECT_EQ(looming.sizeTrend(), expected) << "per frame " << per_frame;
+    looming.restart(frameWith(tex, c, side), 0.5, boxAt(c, side));
+    EXPECT_EQ(looming.sizeTrend(), 0) << "after a restart, per frame " << per_frame;
+  }
+}
+
+TEST(LoomingTrend, NoTrendWithoutMeasurements) {
+  const cv::Mat plain(240, 320, CV_8UC1, cv::Scalar(90));
+  obstacle_tracker::core::LoomingEstimator looming;
+  const cv::Point2f c(160.0f, 120.0f);
+  looming.start(plain, 0.0, boxAt(c, 40.0f));
+  for (int k = 1; k <= 12; ++k) looming.track(plain, k / 30.0, boxAt(c, 40.0f * (1.0f + 0.02f * k)));
+  EXPECT_EQ(looming.sizeTrend(), 0);  // flat: the box sizes are no evidence of a trend
 }

@@ -3,6 +3,7 @@
 // KcfTracker's known answers: sub-pixel shifts, scale, occlusion, evaluate / shifted search, and
 // detect + learn against update.
 #include <cmath>
+#include <stdexcept>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -95,6 +96,37 @@ TEST_P(KcfScale, FollowsAGrowingPatternWithin5PercentScale) {
 }
 
 INSTANTIATE_TEST_SUITE_P(SearchAndFilter, KcfScale, ::testing::Values(false, true));
+
+// The three-scale search's step against the size trend given from outside (setSizeTrend): a
+// pattern growing 2 % a frame. Without a trend given, and with a growing trend, the first step
+// comes on the same frame; with no trend (0) or a shrinking one, scale_confirm_frames - 1 frames
+// later (the larger scale must win that many frames in a row).
+TEST(KcfScaleConfirmation, AStepWaitsUnlessTheTrendAgrees) {
+  const cv::Mat bg = makeTexture(160, 3);
+  const cv::Mat obj = makeTexture(64, 4);
+  const cv::Size fs(320, 240);
+  oc::Params p;
+  p.scale_confirm_frames = 4;
+  int first_step[4] = {0, 0, 0, 0};  // per trend + 1: the frame the box first grew
+  for (int trend : {2, 1, 0, -1}) {  // 2: setSizeTrend never called
+    oc::KcfTracker kcf(p);
+    kcf.init(renderFrame(bg, obj, fs, 160, 120, 40.0, CV_8UC1), cv::Rect2f(140, 100, 40, 40));
+    for (int k = 1; k <= 20 && first_step[trend + 1] == 0; ++k) {
+      if (trend <= 1) kcf.setSizeTrend(trend);
+      const cv::Mat frame = renderFrame(bg, obj, fs, 160, 120, 40.0 * (1.0 + 0.02 * k), CV_8UC1);
+      const double side = std::sqrt(kcf.update(frame).box.area());
+      if (side > 40.5) first_step[trend + 1] = k;
+    }
+  }
+  const int at_once = first_step[3];  // no trend given
+  ASSERT_GT(at_once, 0) << "the box never grew";
+  EXPECT_EQ(first_step[2], at_once) << "growing trend";
+  EXPECT_EQ(first_step[1], at_once + p.scale_confirm_frames - 1) << "no trend";
+  EXPECT_EQ(first_step[0], at_once + p.scale_confirm_frames - 1) << "shrinking trend";
+  oc::KcfTracker kcf(p);
+  EXPECT_THROW(kcf.setSizeTrend(2), std::invalid_argument);
+  EXPECT_THROW(kcf.setSizeTrend(-2), std::invalid_argument);
+}
 
 TEST(Kcf, FullOcclusionDropsConfidenceAndFreezesTheModel) {
   const cv::Mat bg = makeTexture(160, 5);

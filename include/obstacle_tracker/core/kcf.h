@@ -69,6 +69,14 @@ class KcfTracker {
   // std::logic_error before init; an offset that is not finite is ignored.
   void shiftSearch(const cv::Point2f& offset);
 
+  // The object's size trend measured outside the filter (e.g. a looming estimate from the
+  // object's own pixels, looming.h): +1 growing, -1 shrinking, 0 no significant change. Later
+  // update()s take a scale step in the trend's direction at once; a step against it, or any step
+  // while the trend is 0, must win scale_confirm_frames frames in a row. Until it is called (a
+  // filter used on its own) every step is taken at once. Values other than -1, 0, +1 throw
+  // std::invalid_argument.
+  void setSizeTrend(int trend);
+
   // Correlates the current model at a candidate box without changing any state (to verify a
   // re-detection candidate against the model). The window is the model's, centred on the
   // candidate and scaled by sqrt(candidate area / current box area) (the model's aspect is kept);

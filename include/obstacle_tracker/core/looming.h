@@ -18,6 +18,8 @@
 // box driven by them drifts (docs/looming.md).
 #pragma once
 
+#include <array>
+
 #include <opencv2/core.hpp>
 
 #include "obstacle_tracker/core/expansion_meter.h"
@@ -42,13 +44,29 @@ class LoomingEstimator {
   // no expansion is measured across the gap; the size restarts, the rate is kept).
   void restart(const cv::Mat& frame, double stamp, const cv::Rect2f& box);
 
+  // The size trend over the last kTrendFrames tracked frames, from the object's own pixels: +1
+  // when the measured expansions add up to more than kTrendLogSize, -1 below minus that, 0
+  // otherwise or when fewer than half of those frames were measured. What
+  // KcfTracker::setSizeTrend takes. A sum over frames, not the filter's rate against its standard
+  // deviation: the rate's uncertainty is held up by its process noise (about 0.27/s at the
+  // default), so a slow approach (0.2/s, 0.06 in 10 frames at 30 Hz) never counted as growth.
+  // The threshold is about 1.5 scale steps of 5 %: the pixel expansions share part of the scale
+  // search's bias (both see the background moving inside the box), and on the flying clips a
+  // lower one let through more of the steps the confirmation holds back (docs/measurements.md).
+  int sizeTrend() const;
+  static constexpr int kTrendFrames = 10;
+  static constexpr double kTrendLogSize = 0.075;  // ln units
   double expansionRate() const { return filter_.expansionRate(); }           // 1/s
   double expansionRateSigma() const { return filter_.expansionRateSigma(); } // 1/s
   double timeToContact() const { return filter_.timeToContact(); }           // s, +inf if not closing
   double timeToContactSigma() const { return filter_.timeToContactSigma(); } // s, +inf if not closing
 
  private:
+  void recordExpansion(const ExpansionMeasurement& m);
+
   bool use_pixels_ = true;
+  std::array<double, kTrendFrames> recent_{};  // the last frames' ln expansions (NaN: not measured)
+  int recent_count_ = 0;                       // frames recorded since the track (re)started
   SizeFilter filter_;
   ExpansionMeter meter_;
 };

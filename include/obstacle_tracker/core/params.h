@@ -102,6 +102,9 @@ namespace core {
   X(double, scale_step, 1.05, 1.0, 1.5, "", "ratio between neighbouring scales")                 \
   X(double, scale_penalty, 0.95, 0.5, 1.0, "",                                                     \
     "factor on the response peak of non-unit scales (favours keeping the size)")                  \
+  X(int, scale_confirm_frames, 4, 1, 30, "",                                                       \
+    "frames in a row a larger (or smaller) scale must win before the box is resized, unless the "   \
+    "object's own pixel expansions show that trend (1 = at once)")                                  \
   X(double, kcf_min_window, 16.0, 0.0, 1024.0, "px",                                               \
     "smallest side of the filter window in frame pixels (context for tiny targets)")              \
   X(bool, kcf_scale_filter, false, false, true, "",                                                \
