@@ -10,6 +10,7 @@
 #include "obstacle_tracker/core/kcf.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -106,23 +107,22 @@ KcfResult trackStep(KcfTracker::Impl& m, const cv::Mat& frame, bool allow_learni
   // Detect at each scale; keep the best (non-unit scales slightly penalised).
   int best = 0;
   float best_score = -1e30f;
-  cv::Point best_loc;
+  std::array<cv::Point, kcf_detail::kMaxScaleCount> peak_locs;  // count <= kMaxScaleCount (params.h)
   const int count = static_cast<int>(m.scales.size());
   for (int i = 0; i < count; ++i) {
     const float s = m.scales[i];
     m.respond(frame, m.center, cv::Size2f(m.window.width * s, m.window.height * s), m.resp[i]);
     double mx;
-    cv::Point loc;
-    cv::minMaxLoc(m.resp[i], nullptr, &mx, nullptr, &loc);
+    cv::minMaxLoc(m.resp[i], nullptr, &mx, nullptr, &peak_locs[i]);
     const float score = static_cast<float>(mx) * m.scale_calib[i] *
                         (std::abs(s - 1.0f) < 1e-6f ? 1.0f : static_cast<float>(p.scale_penalty));
     if (score > best_score) {
       best_score = score;
       best = i;
-      best_loc = loc;
     }
   }
-  if (count > 1) best = m.confirmScale(best, best_loc);
+  if (count > 1) best = m.confirmScale(best);
+  const cv::Point best_loc = peak_locs[best];
   const cv::Mat& r = m.resp[best];
   const float s = m.scales[best];
   KcfResult result;

@@ -151,7 +151,7 @@ struct KcfTracker::Impl {
   cv::Point2f subCellPeak(const cv::Mat& r, cv::Point p) const;
   float psrOf(const cv::Mat& r, cv::Point p, float peak) const;
   float applyScale(float f);
-  int confirmScale(int best, cv::Point& best_loc);
+  int confirmScale(int best);
   cv::Rect2f boxAt(cv::Point2f c, cv::Size2f s) const;
 
   // kcf_scale.cpp

@@ -122,15 +122,14 @@ void KcfTracker::Impl::calibrateScales(const cv::Mat& frame) {
 
 // The searched scale to use this frame. A step in the direction of the size trend measured
 // outside the filter (setSizeTrend) is taken at once; any other step only once the same side has
-// won scale_confirm_frames frames in a row, the unit scale is used until then (best_loc then
-// becomes the unit response's peak). A single frame's win is weak evidence: with the model
+// won scale_confirm_frames frames in a row, the unit scale is used until then. A single frame's win is weak evidence: with the model
 // averaged over frames whose background moved, the smaller window's sample, with less of that
 // background, answers a few percent above the unit scale on many frames of a constant-size
 // target, and steps taken on those wins, never undone, shrank the box to the most contrasted part
-// (a crossing aircraft's tail fin). The looming estimate's rate, from the object's own pixels,
-// tells a real size change within a few frames, so growth is not delayed by the confirmation
-// (docs/measurements.md).
-int KcfTracker::Impl::confirmScale(int best, cv::Point& best_loc) {
+// (a crossing aircraft's tail fin). The size trend (the sum of the last frames' pixel expansions
+// inside the box, LoomingEstimator::sizeTrend) tells a real size change within a few frames, so
+// growth is not delayed by the confirmation (docs/measurements.md).
+int KcfTracker::Impl::confirmScale(int best) {
   const int unit = (static_cast<int>(scales.size()) - 1) / 2;
   const int side = best > unit ? 1 : (best < unit ? -1 : 0);
   if (side == 0 || !have_size_trend || side == size_trend) {
@@ -142,7 +141,6 @@ int KcfTracker::Impl::confirmScale(int best, cv::Point& best_loc) {
     scale_votes = 0;
     return best;
   }
-  cv::minMaxLoc(resp[static_cast<std::size_t>(unit)], nullptr, nullptr, nullptr, &best_loc);
   return unit;
 }
 
