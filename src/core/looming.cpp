@@ -61,6 +61,15 @@ int LoomingEstimator::sizeTrend() const {
     ++measured;
   }
   if (2 * measured < kTrendFrames) return 0;
+  // The mean expansion must stand out of the expansions' own scatter (a one-sample t statistic).
+  const double mean = sum / measured;
+  double squares = 0.0;
+  for (int i = 0; i < frames; ++i) {
+    const double v = recent_[static_cast<std::size_t>(i)];
+    if (!std::isnan(v)) squares += (v - mean) * (v - mean);
+  }
+  const double standard_error = std::sqrt(squares / (measured - 1) / measured);
+  if (!(std::abs(mean) >= kTrendStandardErrors * standard_error)) return 0;
   return sum > kTrendLogSize ? 1 : (sum < -kTrendLogSize ? -1 : 0);
 }
 

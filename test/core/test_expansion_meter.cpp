@@ -192,6 +192,29 @@ TEST(LoomingTrend, GrowingConstantAndShrinking) {
   }
 }
 
+// Expansions that swing by +6 % and -4 % on alternate frames add up to 0.1 over 10 frames, past
+// the sum's threshold, but their mean is far inside their scatter: no trend. A steady 1 % a frame
+// with a small wobble is one.
+TEST(LoomingTrend, ScatteredExpansionsAreNoTrend) {
+  const cv::Mat tex = objectTexture(21, 1);
+  const cv::Point2f c(160.0f, 120.0f);
+  const struct {
+    double even, odd;  // ln expansion on even and odd frames
+    int expected;
+  } cases[] = {{0.06, -0.04, 0}, {-0.04, 0.06, 0}, {0.012, 0.008, 1}, {-0.012, -0.008, -1}};
+  for (const auto& tc : cases) {
+    obstacle_tracker::core::LoomingEstimator looming;
+    double side = 50.0;
+    looming.start(frameWith(tex, c, static_cast<float>(side)), 0.0, boxAt(c, static_cast<float>(side)));
+    for (int k = 1; k <= 11; ++k) {
+      side *= std::exp(k % 2 == 0 ? tc.even : tc.odd);
+      const float s = static_cast<float>(side);
+      looming.track(frameWith(tex, c, s), k / 30.0, boxAt(c, s));
+    }
+    EXPECT_EQ(looming.sizeTrend(), tc.expected) << "expansions " << tc.even << ", " << tc.odd;
+  }
+}
+
 TEST(LoomingTrend, NoTrendWithoutMeasurements) {
   const cv::Mat plain(240, 320, CV_8UC1, cv::Scalar(90));
   obstacle_tracker::core::LoomingEstimator looming;

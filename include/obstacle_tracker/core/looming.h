@@ -53,9 +53,14 @@ class LoomingEstimator {
   // The threshold is about 1.5 scale steps of 5 %: the pixel expansions share part of the scale
   // search's bias (both see the background moving inside the box), and on the flying clips a
   // lower one let through more of the steps the confirmation holds back (docs/measurements.md).
+  // The sum must also stand out of the expansions' own scatter: their mean at least
+  // kTrendStandardErrors standard errors from zero (a one-sample t test). A target of 10-15 px
+  // gives expansions that scatter by 2-3 % a frame around no change, and sums of ten of them pass
+  // the threshold on a quarter of the frames; a real change is steady from frame to frame.
   int sizeTrend() const;
   static constexpr int kTrendFrames = 10;
   static constexpr double kTrendLogSize = 0.075;  // ln units
+  static constexpr double kTrendStandardErrors = 2.0;
   double expansionRate() const { return filter_.expansionRate(); }           // 1/s
   double expansionRateSigma() const { return filter_.expansionRateSigma(); } // 1/s
   double timeToContact() const { return filter_.timeToContact(); }           // s, +inf if not closing
