@@ -19,13 +19,15 @@ SUDO=""
 if [ "$(id -u)" -ne 0 ]; then SUDO=sudo; fi
 
 PACKAGES=(
-  cmake g++ make pkg-config libgtest-dev libbenchmark-dev libeigen3-dev libyaml-cpp-dev libcli11-dev
+  cmake g++ make pkg-config libgtest-dev libbenchmark-dev libeigen3-dev libyaml-cpp-dev libcli11-dev libboost-dev
   catkin ros-message-generation ros-std-msgs ros-geometry-msgs ros-sensor-msgs python3-geometry-msgs python3-std-msgs
-  libroscpp-dev libstd-msgs-dev libsensor-msgs-dev libgeometry-msgs-dev
+  libroscpp-dev libxmlrpcpp-dev libstd-msgs-dev libsensor-msgs-dev libgeometry-msgs-dev
+  libdiagnostic-msgs-dev libros-rosgraph-msgs-dev python3-rospy
   libnodeletlib-dev libnodeletlib-tools
   libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure
   libcv-bridge-dev libimage-transport-dev libimage-geometry-dev libopencv-contrib-dev
-  libtf2-ros-dev libtf2-eigen-dev tf2-tools libdiagnostic-updater-dev libvisualization-msgs-dev
+  libtf2-ros-dev libdiagnostic-updater-dev libvisualization-msgs-dev
+  tf2-tools  # Debian ships tf2_ros's static_transform_publisher (launch files, rostests) in it
   librosbag-dev python3-rosbag librostest-dev python3-rostest python3-sensor-msgs
   rosbash python3-rostopic python3-rosnode python3-rosmsg python3-rosparam python3-roslaunch python3-diagnostic-msgs
   python3-numpy python3-matplotlib python3-yaml python3-opencv
