@@ -9,6 +9,8 @@
 
 #include <opencv2/core/hal/intrin.hpp>
 
+#include "obstacle_tracker/core/frame_check.h"
+
 namespace obstacle_tracker {
 namespace core {
 
@@ -107,10 +109,7 @@ void nearestDirections(const float* gdx, const float* gdy, float* gm2, float* gb
 }  // namespace
 
 void FhogExtractor::compute(const cv::Mat& patch, int cell, cv::Mat& out) {
-  if (patch.empty()) throw std::invalid_argument("FhogExtractor::compute: empty patch");
-  if (patch.type() != CV_8UC1 && patch.type() != CV_8UC3) {
-    throw std::invalid_argument("FhogExtractor::compute: patch must be CV_8UC1 or CV_8UC3");
-  }
+  requireFrame(patch, "FhogExtractor::compute");
   if (cell < 1) throw std::invalid_argument("FhogExtractor::compute: cell size must be >= 1");
   if (patch.rows < cell || patch.cols < cell) {
     throw std::invalid_argument("FhogExtractor::compute: patch smaller than one cell");

@@ -13,6 +13,8 @@
 
 #include <opencv2/core/hal/intrin.hpp>
 
+#include "obstacle_tracker/core/frame_check.h"
+
 namespace obstacle_tracker {
 namespace core {
 namespace {
@@ -131,9 +133,7 @@ int fastMbdImpl(const cv::Mat& image, int passes, cv::Mat& dist, cv::Mat& upper,
 }  // namespace
 
 int fastMbd(const cv::Mat& image, int passes, cv::Mat& dist, cv::Mat& upper, cv::Mat& lower) {
-  if (image.empty()) throw std::invalid_argument("fastMbd: empty image");
-  if (image.type() != CV_8UC1 && image.type() != CV_8UC3)
-    throw std::invalid_argument("fastMbd: image must be CV_8UC1 or CV_8UC3");
+  requireFrame(image, "fastMbd");
   if (passes < 1) throw std::invalid_argument("fastMbd: passes must be >= 1");
   dist.create(image.size(), image.type());
   upper.create(image.size(), image.type());
