@@ -9,7 +9,8 @@
 //     ground truth for our SaliencyDetector (FastMBD + Otsu + regions) and for OpenCV's spectral
 //     residual saliency followed by the same Otsu / regions step;
 //  2. AutoInitializer (defaults) over the first N frames: frame of the first confirmed box, its
-//     centre error and IoU, and whether it came within 20 px inside the first second;
+//     centre error and IoU, and whether it came within the precision score's threshold
+//     (eval::kPrecisionSummaryPx) inside the first second;
 //  3. cue ablation on every sequence: the same, with each cue switched off or added.
 // The parameter variants under test are in src/tools/init_table/variants.cpp.
 #include <algorithm>
@@ -35,6 +36,7 @@
 #include "obstacle_tracker/core/saliency.h"
 #include "obstacle_tracker/core/segmentation.h"
 #include "obstacle_tracker/eval/metrics.h"
+#include "obstacle_tracker/eval/runner.h"
 #include "obstacle_tracker/eval/sequence.h"
 
 namespace fs = std::filesystem;
@@ -85,8 +87,6 @@ float overlap(const cv::Rect2f& a, const cv::Rect2f& b) { return static_cast<flo
 float centreError(const cv::Rect2f& a, const cv::Rect2f& b) {
   return static_cast<float>(obstacle_tracker::eval::centreError(a, b));
 }
-
-bool isFlying(const std::string& n) { return n.rfind("antiuav", 0) == 0 || n.rfind("lasot_airplane", 0) == 0; }
 
 struct AutoResult {
   int frame = -1;  // 1-based, -1 = none
@@ -227,11 +227,11 @@ void printDetectorOptionRow(const Variant& o, const std::vector<Sequence>& seqs,
     for (size_t i = 0; i < all_frames[k].size(); i += 5) {
       const auto& r = od.detect(all_frames[k][i]);
       const float v = r.empty() ? 0.0f : overlap(r[0].box, seqs[k].gt[i]);
-      const bool hit = !r.empty() && centreError(r[0].box, seqs[k].gt[i]) <= 20.0f;
+      const bool hit = !r.empty() && centreError(r[0].box, seqs[k].gt[i]) <= ev::kPrecisionSummaryPx;
       iou_all += v;
       ++n_all;
       hit_all += hit;
-      if (isFlying(seqs[k].name)) {
+      if (ev::isFlyingSequence(seqs[k].name)) {
         ++n_fly;
         hit_fly += hit;
       } else {
@@ -249,19 +249,20 @@ void printDetectorOptionsTable(const std::vector<Sequence>& seqs,
   const std::vector<Variant> options = detectorOptions();
   std::printf("\n## One-frame detector options: best-ranked region on frames 1, 6, 11, ... of the first %d\n\n",
               max_frames);
-  std::printf("| option | mean IoU (all) | centre <= 20 px (all) | mean IoU (non-flying) | centre <= 20 px (flying) |\n");
+  std::printf("| option | mean IoU (all) | centre <= %.0f px (all) | mean IoU (non-flying) | centre <= %.0f px (flying) |\n",
+              ev::kPrecisionSummaryPx, ev::kPrecisionSummaryPx);
   std::printf("|---|---|---|---|---|\n");
   for (const Variant& o : options) printDetectorOptionRow(o, seqs, all_frames);
 }
 
-// A first box within 20 px inside the first second.
+// A first box within kPrecisionSummaryPx inside the first second.
 bool isEarlyHit(const AutoResult& r, int first_second) {
-  return r.frame > 0 && r.frame <= first_second && r.error <= 20.0f;
+  return r.frame > 0 && r.frame <= first_second && r.error <= ev::kPrecisionSummaryPx;
 }
 
 int countFlying(const std::vector<Sequence>& seqs) {
   int flying = 0;
-  for (const Sequence& s : seqs) flying += isFlying(s.name);
+  for (const Sequence& s : seqs) flying += ev::isFlyingSequence(s.name);
   return flying;
 }
 
@@ -269,13 +270,14 @@ int countFlying(const std::vector<Sequence>& seqs) {
 void printAutoInitTable(const std::vector<Sequence>& seqs, const std::vector<std::vector<cv::Mat>>& all_frames,
                         const oc::Params& p, int max_frames, int first_second) {
   std::printf("\n## AutoInitializer (defaults), first %d frames\n\n", max_frames);
-  std::printf("| sequence | flying | first confirmed box | centre err (px) | IoU | frame | within 20 px in 1st second | ms/frame |\n");
+  std::printf("| sequence | flying | first confirmed box | centre err (px) | IoU | frame | within %.0f px in 1st second | ms/frame |\n",
+              ev::kPrecisionSummaryPx);
   std::printf("|---|---|---|---|---|---|---|---|\n");
   int flying_ok = 0;
   for (size_t k = 0; k < seqs.size(); ++k) {
     const AutoResult r = runAuto(seqs[k], all_frames[k], p);
     const bool ok = isEarlyHit(r, first_second);
-    if (isFlying(seqs[k].name)) flying_ok += ok;
+    if (ev::isFlyingSequence(seqs[k].name)) flying_ok += ok;
     char err[32] = "-", io[32] = "-", fr[32] = "-";
     if (r.frame > 0) {
       std::snprintf(err, sizeof err, "%.1f", r.error);
@@ -283,11 +285,11 @@ void printAutoInitTable(const std::vector<Sequence>& seqs, const std::vector<std
       std::snprintf(fr, sizeof fr, "%d", r.frame);
     }
     std::printf("| %s | %s | %s | %s | %s | %s | %s | %.2f |\n", seqs[k].name.c_str(),
-                isFlying(seqs[k].name) ? "yes" : "no", r.frame > 0 ? "yes" : "none", err, io, fr,
+                ev::isFlyingSequence(seqs[k].name) ? "yes" : "no", r.frame > 0 ? "yes" : "none", err, io, fr,
                 ok ? "**yes**" : "no", r.ms);
   }
-  std::printf("\nFlying clips with a first box within 20 px inside the first %d frames: %d of %d\n",
-              first_second, flying_ok, countFlying(seqs));
+  std::printf("\nFlying clips with a first box within %.0f px inside the first %d frames: %d of %d\n",
+              ev::kPrecisionSummaryPx, first_second, flying_ok, countFlying(seqs));
 }
 
 // The cue-ablation table: every variant on every sequence, and how many flying clips it gets early.
@@ -305,7 +307,7 @@ void printCueAblationTable(const std::vector<Sequence>& seqs, const std::vector<
     for (size_t k = 0; k < seqs.size(); ++k) {
       const AutoResult r = runAuto(seqs[k], all_frames[k], v.p);
       const bool good = isEarlyHit(r, first_second);
-      if (isFlying(seqs[k].name)) ok += good;
+      if (ev::isFlyingSequence(seqs[k].name)) ok += good;
       std::printf(" %s%s%s |", good ? "**" : "", fmtAuto(r).c_str(), good ? "**" : "");
     }
     std::printf(" %d/%d |\n", ok, flying);
