@@ -2,11 +2,12 @@
 # Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
 """OTB-style precision and success plots from the curves.csv that `evaluate` writes.
 
-usage: plot_results.py CURVES.csv [--out DIR] [--sequence mean:all] [--dpi 80]
+usage: plot_results.py CURVES.csv [--results RESULTS.csv] [--out DIR] [--sequence mean:all] [--dpi 80]
 
 Writes one PNG per (mode, subset, curve): e.g. precision_ope_all.png, success_ope_flying.png,
 success_tre_all.png. Legends rank the trackers as OTB does: by precision at 20 px for the
-precision plot, by the area under the curve (mean over the 21 thresholds) for the success plot.
+precision plot, by the area under the success curve for the success plot; both are evaluate's
+own precision20 and auc from the results.csv written beside CURVES (or --results).
 Needs only Debian's python3-matplotlib (Agg backend, no display).
 """
 import argparse
@@ -31,19 +32,24 @@ def read_curves(path):
     return data
 
 
-def summary(curve, points):
-    if curve == "precision":
-        for t, v in points:
-            if abs(t - 20.0) < 1e-9:
-                return v
-        return 0.0
-    return sum(v for _, v in points) / max(1, len(points))
+def read_summaries(path):
+    """{(mode, sequence, tracker): {"precision": precision20, "success": auc}} from results.csv"""
+    scores = {}
+    with open(path, newline="") as f:
+        for row in csv.DictReader(f):
+            scores[(row["mode"], row["sequence"], row["tracker"])] = {
+                "precision": float(row["precision20"]), "success": float(row["auc"])}
+    return scores
 
 
-def plot(key, per_tracker, out_dir, dpi):
+def plot(key, per_tracker, scores, out_dir, dpi):
     mode, sequence, curve = key
     subset = sequence.split(":", 1)[1] if sequence.startswith("mean:") else sequence
-    ranked = sorted(per_tracker.items(), key=lambda kv: -summary(curve, kv[1]))
+
+    def summary(tracker):
+        return scores[(mode, sequence, tracker)][curve]
+
+    ranked = sorted(per_tracker.items(), key=lambda kv: -summary(kv[0]))
     fig, ax = plt.subplots(figsize=(5.2, 4.0))
     styles = ["-", "--", "-.", ":"]
     for i, (tracker, points) in enumerate(ranked):
@@ -52,7 +58,7 @@ def plot(key, per_tracker, out_dir, dpi):
         ys = [p[1] for p in points]
         width = 2.4 if tracker.startswith("ours") else 1.4
         ax.plot(xs, ys, styles[(i // 10) % len(styles)], linewidth=width,
-                label="%s [%.3f]" % (tracker, summary(curve, points)))
+                label="%s [%.3f]" % (tracker, summary(tracker)))
     if curve == "precision":
         ax.set_xlabel("location error threshold (px)")
         ax.set_ylabel("precision")
@@ -78,6 +84,8 @@ def plot(key, per_tracker, out_dir, dpi):
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("curves", help="curves.csv written by evaluate")
+    ap.add_argument("--results", default=None,
+                    help="results.csv written by evaluate (default: the one beside CURVES)")
     ap.add_argument("--out", default=None, help="output folder (default: the folder of CURVES)")
     ap.add_argument("--sequence", action="append", default=None,
                     help="which rows to plot (default: every mean:* subset); repeatable")
@@ -89,6 +97,12 @@ def main(argv=None):
     if not data:
         print("plot_results: no curves in %s" % args.curves, file=sys.stderr)
         return 1
+    results = args.results or os.path.join(os.path.dirname(os.path.abspath(args.curves)), "results.csv")
+    if not os.path.isfile(results):
+        print("plot_results: no %s (the results.csv evaluate wrote with the curves; --results FILE)"
+              % results, file=sys.stderr)
+        return 1
+    scores = read_summaries(results)
     wanted = args.sequence
     written = []
     for key in sorted(data):
@@ -97,7 +111,7 @@ def main(argv=None):
             continue
         if wanted is not None and sequence not in wanted:
             continue
-        written.append(plot(key, data[key], out_dir, args.dpi))
+        written.append(plot(key, data[key], scores, out_dir, args.dpi))
     for p in written:
         print("plot_results: wrote %s" % p, file=sys.stderr)
     return 0 if written else 1
