@@ -22,22 +22,10 @@
 #include <sensor_msgs/image_encodings.h>
 
 #include "obstacle_tracker/eval/sequence.h"
+#include "obstacle_tracker/ros/camera_geometry.h"
 #include "obstacle_tracker/scene/scene_generator.h"
 
 namespace {
-
-sensor_msgs::CameraInfo pinhole(int width, int height, double focal) {
-  sensor_msgs::CameraInfo info;
-  info.width = width;
-  info.height = height;
-  const double cx = 0.5 * width - 0.5, cy = 0.5 * height - 0.5;
-  info.distortion_model = "plumb_bob";
-  info.D = {0.0, 0.0, 0.0, 0.0, 0.0};
-  info.K = {focal, 0.0, cx, 0.0, focal, cy, 0.0, 0.0, 1.0};
-  info.R = {1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0};
-  info.P = {focal, 0.0, cx, 0.0, 0.0, focal, cy, 0.0, 0.0, 0.0, 1.0, 0.0};
-  return info;
-}
 
 // The node's private parameters (the file comment above says what each does).
 struct PublisherParams {
@@ -155,7 +143,7 @@ class FramePublisher {
     header.seq = seq_++;
     sensor_msgs::ImagePtr image = cv_bridge::CvImage(header, encoding, frame).toImageMsg();
     const double f = focal > 0.0 ? focal : 0.5 * frame.cols / std::tan(0.5 * hfov * M_PI / 180.0);
-    sensor_msgs::CameraInfo info = pinhole(frame.cols, frame.rows, f);
+    sensor_msgs::CameraInfo info = obstacle_tracker::bridge::pinholeCameraInfo(frame.cols, frame.rows, f);
     info.header = header;
     info_pub_.publish(info);
     image_pub_.publish(image);

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <sstream>
 
 #include <sensor_msgs/distortion_models.h>
@@ -126,6 +127,22 @@ BoxGeometry CameraGeometry::box(const cv::Rect2f& b) const {
   g.angular_width = angle(ray(b.x, cy), ray(b.x + b.width, cy));
   g.angular_height = angle(ray(cx, b.y), ray(cx, b.y + b.height));
   return g;
+}
+
+sensor_msgs::CameraInfo pinholeCameraInfo(int width, int height, double focal_px, double cx, double cy) {
+  sensor_msgs::CameraInfo info;
+  info.width = static_cast<std::uint32_t>(width);
+  info.height = static_cast<std::uint32_t>(height);
+  info.distortion_model = models::PLUMB_BOB;
+  info.D = {0.0, 0.0, 0.0, 0.0, 0.0};
+  info.K = {focal_px, 0.0, cx, 0.0, focal_px, cy, 0.0, 0.0, 1.0};
+  info.R = {1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0};
+  info.P = {focal_px, 0.0, cx, 0.0, 0.0, focal_px, cy, 0.0, 0.0, 0.0, 1.0, 0.0};
+  return info;
+}
+
+sensor_msgs::CameraInfo pinholeCameraInfo(int width, int height, double focal_px) {
+  return pinholeCameraInfo(width, height, focal_px, 0.5 * width - 0.5, 0.5 * height - 0.5);
 }
 
 }  // namespace bridge

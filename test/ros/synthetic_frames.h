@@ -16,6 +16,8 @@
 #include <sensor_msgs/Image.h>
 #include <sensor_msgs/image_encodings.h>
 
+#include "obstacle_tracker/ros/camera_geometry.h"
+
 namespace obstacle_tracker {
 namespace testing {
 
@@ -77,17 +79,10 @@ inline double maxAbsDiff(const cv::Mat& a, const cv::Mat& b) { return cv::norm(a
 
 // Pinhole camera with a 60 degree horizontal field of view, no distortion.
 inline sensor_msgs::CameraInfo cameraInfo(const sensor_msgs::Image& image) {
-  sensor_msgs::CameraInfo info;
-  info.header = image.header;
-  info.width = image.width;
-  info.height = image.height;
   const double f = 0.5 * image.width / std::tan(30.0 * M_PI / 180.0);
-  const double cx = 0.5 * image.width - 0.5, cy = 0.5 * image.height - 0.5;
-  info.distortion_model = "plumb_bob";
-  info.D = {0.0, 0.0, 0.0, 0.0, 0.0};
-  info.K = {f, 0.0, cx, 0.0, f, cy, 0.0, 0.0, 1.0};
-  info.R = {1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0};
-  info.P = {f, 0.0, cx, 0.0, 0.0, f, cy, 0.0, 0.0, 0.0, 1.0, 0.0};
+  sensor_msgs::CameraInfo info =
+      bridge::pinholeCameraInfo(static_cast<int>(image.width), static_cast<int>(image.height), f);
+  info.header = image.header;
   return info;
 }
 

@@ -2,7 +2,8 @@
 //
 // CameraGeometry (camera_geometry.h) on the camera_info forms drivers publish beyond the known
 // answers of test_ros_conversion.cpp: all-zero P and R, a P that differs from K, a stereo
-// baseline, ROI with binning, the equidistant model, and the refusals of R and P.
+// baseline, ROI with binning, the equidistant model, and the refusals of R and P; and the
+// camera_info pinholeCameraInfo builds.
 #include <cmath>
 #include <limits>
 #include <string>
@@ -161,4 +162,27 @@ TEST(CameraGeometryImageGeometry, UnusableRAndPAreRefused) {
   EXPECT_FALSE(cam.setCameraInfo(info, &error));
   EXPECT_NE(error.find("K has"), std::string::npos) << error;
   EXPECT_NE(error.find("P has"), std::string::npos) << error;
+}
+
+TEST(CameraGeometryImageGeometry, PinholeCameraInfoIsAnUndistortedPinhole) {
+  const sensor_msgs::CameraInfo info = obstacle_tracker::bridge::pinholeCameraInfo(640, 480, 500.0);
+  EXPECT_EQ(info.width, 640u);
+  EXPECT_EQ(info.height, 480u);
+  EXPECT_EQ(info.distortion_model, "plumb_bob");
+  EXPECT_EQ(info.D, std::vector<double>(5, 0.0));
+  const boost::array<double, 9> k = {500.0, 0.0, 319.5, 0.0, 500.0, 239.5, 0.0, 0.0, 1.0};
+  const boost::array<double, 9> r = {1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0};
+  const boost::array<double, 12> p = {500.0, 0.0, 319.5, 0.0, 0.0, 500.0, 239.5, 0.0, 0.0, 0.0, 1.0, 0.0};
+  EXPECT_EQ(info.K, k);
+  EXPECT_EQ(info.R, r);
+  EXPECT_EQ(info.P, p);
+  const sensor_msgs::CameraInfo off_centre = obstacle_tracker::bridge::pinholeCameraInfo(320, 240, 300.0, 160.0, 120.0);
+  EXPECT_EQ(off_centre.K[2], 160.0);
+  EXPECT_EQ(off_centre.K[5], 120.0);
+  EXPECT_EQ(off_centre.P[2], 160.0);
+  EXPECT_EQ(off_centre.P[6], 120.0);
+  // The image centre (corner coordinates) looks straight ahead.
+  const cv::Vec3d ahead = usable(info).ray(320.0, 240.0);
+  EXPECT_NEAR(ahead[0], 0.0, 1e-12);
+  EXPECT_NEAR(ahead[1], 0.0, 1e-12);
 }

@@ -53,5 +53,13 @@ class CameraGeometry {
   double half_pixel_y_ = 0.5;
 };
 
+// The camera_info of an ideal pinhole camera of width x height pixels: focal length focal_px on
+// both axes, principal point (cx, cy) in K's pixel-centre coordinates, R the identity,
+// P = [K | 0], plumb_bob with five zero coefficients. The header is left empty.
+sensor_msgs::CameraInfo pinholeCameraInfo(int width, int height, double focal_px, double cx, double cy);
+
+// The same with the principal point at the image centre: (width / 2 - 0.5, height / 2 - 0.5).
+sensor_msgs::CameraInfo pinholeCameraInfo(int width, int height, double focal_px);
+
 }  // namespace bridge
 }  // namespace obstacle_tracker

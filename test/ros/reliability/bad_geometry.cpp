@@ -20,6 +20,7 @@
 #include <opencv2/core.hpp>
 
 #include "bad_input_harness.h"
+#include "obstacle_tracker/ros/camera_geometry.h"
 #include "obstacle_tracker/scene/scene_generator.h"
 
 namespace rel = obstacle_tracker::reliability;
@@ -35,16 +36,10 @@ TEST(BadGeometry, BadCameraInfoAndMissingTfLeaveBearingsOutWithoutBlocking) {
   ASSERT_TRUE(waitForTrackers()) << "the trackers did not come up";
   // tracker_geo: use_camera_info true, target_frame "world" (no tf until the end of this test).
   auto goodInfo = [](const ros::Time& stamp) {
-    sensor_msgs::CameraInfo info;
+    // Principal point (160, 120), not the pixel-centre image centre (159.5, 119.5).
+    sensor_msgs::CameraInfo info = obstacle_tracker::bridge::pinholeCameraInfo(320, 240, 300.0, 160.0, 120.0);
     info.header.stamp = stamp;
     info.header.frame_id = "camera";
-    info.width = 320;
-    info.height = 240;
-    info.distortion_model = "plumb_bob";
-    info.D = {0, 0, 0, 0, 0};
-    info.K = {300, 0, 160, 0, 300, 120, 0, 0, 1};
-    info.R = {1, 0, 0, 0, 1, 0, 0, 0, 1};
-    info.P = {300, 0, 160, 0, 0, 300, 120, 0, 0, 0, 1, 0};
     return info;
   };
   // Frames of a generated scene (an aircraft crossing the sky): the tracker finds
