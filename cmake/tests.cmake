@@ -7,7 +7,7 @@ if(NOT TARGET tests)
 endif()
 file(GLOB OT_CORE_TESTS CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/test/core/test_*.cpp)
 if(NOT OT_WITH_IMAGE_IO)  # these read or write image files, or use the evaluation's I/O
-  list(FILTER OT_CORE_TESTS EXCLUDE REGEX "/test_(eval_runner|pipeline_scenes|scene|sequence)\\.cpp$")
+  list(FILTER OT_CORE_TESTS EXCLUDE REGEX "/test_(eval_runner|pipeline_scenes|scene|sequence|sequence_list)\\.cpp$")
 endif()
 foreach(src ${OT_CORE_TESTS})
   get_filename_component(name ${src} NAME_WE)

@@ -1,7 +1,7 @@
 // Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
 //
-// Finding a sequence's files on disk (sequence_files.h), and the image-extension and fps-text
-// rules sequence.h declares.
+// Finding a sequence's files on disk (sequence_files.h), and the rules sequence.h declares for
+// image extensions, fps texts and which folders are sequences with a ground truth.
 #include "sequence_files.h"
 
 #include <algorithm>
@@ -196,6 +196,36 @@ std::string videoGroundTruthFile(const fs::path& video) {
   const std::string stem = video.stem().string();
   return firstFileIn(video.parent_path(), {stem + "_groundtruth_rect.txt", stem + ".txt",
                                            stem + "_gt.txt", "groundtruth_rect.txt"});
+}
+
+bool folderHasGroundTruth(const std::string& folder) {
+  const fs::path dir(folder);
+  if (!folderGroundTruthFile(dir).empty()) return true;
+  // Without a file of its own, only a folder that Sequence reads as one video has the video's.
+  fs::path image_folder;
+  if (!listSequenceImages(dir, &image_folder).empty()) return false;
+  const std::vector<std::string> videos = listFolderVideos(dir);
+  return videos.size() == 1 && !videoGroundTruthFile(videos.front()).empty();
+}
+
+std::vector<std::string> listSequences(const std::string& root, std::vector<std::string>* skipped) {
+  std::vector<fs::path> dirs;
+  std::error_code ec;
+  for (fs::directory_iterator it(root, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    std::error_code type_ec;  // a broken link is no folder, and does not end the listing
+    if (!name.empty() && name[0] != '.' && it->is_directory(type_ec)) dirs.push_back(it->path());
+  }
+  std::sort(dirs.begin(), dirs.end());
+  std::vector<std::string> sequences;
+  for (const fs::path& dir : dirs) {
+    if (folderHasGroundTruth(dir.string())) {
+      sequences.push_back(dir.string());
+    } else if (skipped) {
+      skipped->push_back(dir.string());
+    }
+  }
+  return sequences;
 }
 
 }  // namespace eval

@@ -18,7 +18,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <filesystem>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -39,7 +38,6 @@
 #include "obstacle_tracker/eval/runner.h"
 #include "obstacle_tracker/eval/sequence.h"
 
-namespace fs = std::filesystem;
 namespace oc = obstacle_tracker::core;
 namespace ev = obstacle_tracker::eval;
 using obstacle_tracker::init_table_tool::ablationVariants;
@@ -48,7 +46,7 @@ using obstacle_tracker::init_table_tool::Variant;
 
 namespace {
 
-// A sequence folder with a ground truth. Its reader is the one listSequences opened to find the
+// A sequence folder with a ground truth. Its reader is the one openSequences opened to find the
 // ground truth, kept until loadFirstFrames has taken the frames the tables use: opening it again
 // would parse the ground truth and, for a video, set up a decoder a second time.
 struct Sequence {
@@ -57,26 +55,25 @@ struct Sequence {
   std::unique_ptr<ev::Sequence> reader;
 };
 
-// The sequence folders under root with a ground truth, in name order, read by the evaluation's
-// rules (eval::Sequence: img/ or a video, any ground-truth file it knows); others are skipped
+// The sequence folders under root that evaluate finds (eval::listSequences), in name order, each
+// opened; the others, and those that cannot be read or have an empty ground truth, are skipped
 // with a message, as evaluate skips them.
-std::vector<Sequence> listSequences(const std::string& root) {
-  std::vector<fs::path> dirs;
-  std::error_code ec;
-  for (fs::directory_iterator it(root, ec), end; !ec && it != end; it.increment(ec)) {
-    if (it->is_directory(ec) && it->path().filename().string()[0] != '.') dirs.push_back(it->path());
+std::vector<Sequence> openSequences(const std::string& root) {
+  std::vector<std::string> skipped;
+  const std::vector<std::string> dirs = ev::listSequences(root, &skipped);
+  for (const std::string& dir : skipped) {
+    std::fprintf(stderr, "init_table: skipping %s (no ground-truth file)\n", dir.c_str());
   }
-  std::sort(dirs.begin(), dirs.end());
   std::vector<Sequence> seqs;
-  for (const fs::path& dir : dirs) {
+  for (const std::string& dir : dirs) {
     try {
-      auto reader = std::make_unique<ev::Sequence>(dir.string());
+      auto reader = std::make_unique<ev::Sequence>(dir);
       if (!reader->hasGroundTruth()) throw std::runtime_error("no ground truth");
-      Sequence s{reader->name(), dir.string(), reader->groundTruth(), nullptr};
+      Sequence s{reader->name(), dir, reader->groundTruth(), nullptr};
       s.reader = std::move(reader);
       seqs.push_back(std::move(s));
     } catch (const std::exception& e) {
-      std::fprintf(stderr, "init_table: skipping %s (%s)\n", dir.string().c_str(), e.what());
+      std::fprintf(stderr, "init_table: skipping %s (%s)\n", dir.c_str(), e.what());
     }
   }
   return seqs;
@@ -319,7 +316,7 @@ void printCueAblationTable(const std::vector<Sequence>& seqs, const std::vector<
 int main(int argc, char** argv) {
   Options opt;
   if (const auto code = parseArgs(argc, argv, &opt)) return *code;
-  std::vector<Sequence> seqs = listSequences(opt.data);
+  std::vector<Sequence> seqs = openSequences(opt.data);
   if (seqs.empty()) {
     std::fprintf(stderr, "no sequence with ground truth under %s\n", opt.data.c_str());
     return 1;

@@ -163,6 +163,16 @@ class Sequence {
   std::unique_ptr<Video> video_;
 };
 
+// True when `folder` is a sequence folder with a ground-truth file by Sequence's rules: it holds
+// groundtruth_rect.txt, groundtruth.txt or groundtruth_rect.1.txt, or it holds no image and one
+// video whose own ground-truth file (as for a video above) is beside it.
+bool folderHasGroundTruth(const std::string& folder);
+
+// The sequence folders directly under `root` (symlinks followed, hidden folders left out) for
+// which folderHasGroundTruth holds, in name order, as root / name. The other folders are added
+// to *skipped when it is given, also in name order. Empty when root is not a readable folder.
+std::vector<std::string> listSequences(const std::string& root, std::vector<std::string>* skipped = nullptr);
+
 // True when the path names a file with an image extension (jpg, jpeg, png, bmp, tif, tiff, pgm,
 // ppm, pbm, webp, jp2, exr, hdr), case-insensitive.
 bool hasImageExtension(const std::string& path);

@@ -19,38 +19,27 @@ namespace obstacle_tracker {
 namespace evaluate_tool {
 namespace {
 
-bool hasGroundTruthFile(const fs::path& dir) {
-  return fs::exists(dir / "groundtruth_rect.txt") || fs::exists(dir / "groundtruth.txt");
-}
-
 // The sequences under --data: a video file, a folder that is itself a sequence (images or one
-// video, with a ground-truth file), or a folder of sequence folders (those without ground truth
-// are skipped with a message).
+// video, with a ground-truth file), or a folder of sequence folders (eval::listSequences; those
+// without a ground-truth file are skipped with a message).
 std::vector<SequenceInfo> discover(const std::string& data, const std::string& gt_path) {
   std::vector<SequenceInfo> seqs;
   const fs::path root(data);
   if (!fs::exists(root)) throw std::runtime_error("--data " + data + " does not exist");
-  if (fs::is_regular_file(root) || hasGroundTruthFile(root) || !gt_path.empty()) {
+  if (fs::is_regular_file(root) || ev::folderHasGroundTruth(data) || !gt_path.empty()) {
     SequenceInfo one;
     one.path = data;
     one.gt_path = gt_path;  // when empty, Sequence finds the ground-truth file
     seqs.push_back(one);
     return seqs;
   }
-  std::vector<fs::path> dirs;
-  for (const auto& e : fs::directory_iterator(root)) {
-    if (e.is_directory()) dirs.push_back(e.path());
-  }
-  std::sort(dirs.begin(), dirs.end());
-  for (const auto& d : dirs) {
-    if (!hasGroundTruthFile(d)) {
-      std::cerr << "evaluate: skipping " << d.string() << " (no groundtruth_rect.txt)\n";
-      continue;
-    }
+  std::vector<std::string> skipped;
+  for (const std::string& dir : ev::listSequences(data, &skipped)) {
     SequenceInfo one;
-    one.path = d.string();
+    one.path = dir;
     seqs.push_back(one);
   }
+  for (const std::string& dir : skipped) std::cerr << "evaluate: skipping " << dir << " (no ground-truth file)\n";
   if (seqs.empty()) throw std::runtime_error("no sequence with ground truth under " + data);
   return seqs;
 }
