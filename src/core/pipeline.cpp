@@ -86,7 +86,7 @@ Pipeline::Impl::Track& Pipeline::Impl::newTrack(const cv::Mat& frame, double sta
     t->kcf.setParams(params);
     t->looming.setParams(params.looming_rate_noise, params.looming_from_pixels);
   } else {
-    t = std::make_unique<Track>(params);
+    t = std::make_unique<Track>(params, params);  // the filter's and the loop's groups
   }
   t->kcf.init(frame, box);
   t->id = next_id++;

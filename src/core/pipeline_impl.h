@@ -139,7 +139,9 @@ struct Pipeline::Impl {
       float max_image_motion = 0.0f;
     };
 
-    explicit Track(const Params& p) : kcf(p) { looming.setParams(p.looming_rate_noise, p.looming_from_pixels); }
+    Track(const TrackerParams& filter, const LoopParams& loop) : kcf(filter) {
+      looming.setParams(loop.looming_rate_noise, loop.looming_from_pixels);
+    }
     int id = -1;
     KcfTracker kcf;
     LoomingEstimator looming;

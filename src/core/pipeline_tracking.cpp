@@ -204,7 +204,7 @@ void Pipeline::Impl::configureFilter(Track& t, bool learn) {
     gate = std::max(gate, std::min(kMaxLearnGate, KcfTracker::confidenceFrom(k * t.peaks.ref_peak, k * t.peaks.ref_psr)));
   }
   if (std::abs(gate - t.gate.learn_gate) > 1e-3f || learn != t.gate.learning) {
-    Params p = params;
+    TrackerParams p = params;  // the filter's group only
     p.learn_threshold = gate;
     if (!learn) p.learning_rate = 0.0;
     t.kcf.setParams(p);
