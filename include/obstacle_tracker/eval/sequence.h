@@ -15,6 +15,8 @@
 
 #include <opencv2/core.hpp>
 
+#include "obstacle_tracker/core/box_geometry.h"
+
 #include "obstacle_tracker/core/intensity_stretch.h"
 
 namespace obstacle_tracker {
@@ -24,7 +26,9 @@ namespace eval {
 // One box per frame, x,y,w,h (top-left corner, pixels). An absent target (a NaN anywhere, a
 // non-positive width or height, `0,0,0,0`, or an empty line) is the zero box {0,0,0,0}.
 
-inline bool isPresent(const cv::Rect2f& box) { return box.width > 0.0f && box.height > 0.0f; }
+// The one rule for a box being there (core::boxIsAbsent, also used by the metrics): a positive,
+// finite size at a finite position.
+inline bool isPresent(const cv::Rect2f& box) { return !core::boxIsAbsent(box); }
 
 // Parses one line. Separators: commas, tabs, spaces, semicolons (any mix, repeated). 4 values are
 // x,y,w,h; 8 values are a polygon x1,y1,...,x4,y4 (VOT), turned into its axis-aligned bounding
