@@ -105,6 +105,12 @@ def main(argv=None):
     scores = read_summaries(results)
     wanted = args.sequence
     written = []
+    missing = sorted({"%s/%s/%s" % (k[0], k[1], t) for k in data for t in data[k]
+                      if (k[0], k[1], t) not in scores})
+    if missing:
+        print("plot_results: %s has no summary row for %s (curves and results from different runs?)"
+              % (results, ", ".join(missing[:3])), file=sys.stderr)
+        return 1
     for key in sorted(data):
         sequence = key[1]
         if wanted is None and not sequence.startswith("mean:"):

@@ -4,6 +4,7 @@
 // (Danelljan et al., BMVC 2014).
 #include <algorithm>
 #include <cmath>
+#include <string_view>
 
 #include <opencv2/imgproc.hpp>
 
@@ -120,15 +121,24 @@ void KcfTracker::Impl::calibrateScales(const cv::Mat& frame) {
   }
 }
 
+// The per-scale arrays (kMaxScaleCount) hold every scale_count the parameter list allows.
+#define OT_CHECK_SCALE_COUNT_BOUND_(type, name, def, lo, hi, unit, doc)                       \
+  static_assert(std::string_view(#name) != "scale_count" || (hi) == kMaxScaleCount,          \
+                "kMaxScaleCount must equal scale_count's upper bound in params.h");
+OT_TRACKER_PARAMS(OT_CHECK_SCALE_COUNT_BOUND_)
+#undef OT_CHECK_SCALE_COUNT_BOUND_
+
 // The searched scale to use this frame. A step in the direction of the size trend measured
 // outside the filter (setSizeTrend) is taken at once; any other step only once the same side has
-// won scale_confirm_frames frames in a row, the unit scale is used until then. A single frame's win is weak evidence: with the model
+// won scale_confirm_frames frames in a row, the unit scale is used until then. A single frame's
+// win is weak evidence: with the model
 // averaged over frames whose background moved, the smaller window's sample, with less of that
 // background, answers a few percent above the unit scale on many frames of a constant-size
 // target, and steps taken on those wins, never undone, shrank the box to the most contrasted part
 // (a crossing aircraft's tail fin). The size trend (the sum of the last frames' pixel expansions
-// inside the box, LoomingEstimator::sizeTrend) tells a real size change within a few frames, so
-// growth is not delayed by the confirmation (docs/measurements.md).
+// inside the box, LoomingEstimator::sizeTrend, counted only when their mean is beyond two standard
+// errors of their scatter) tells a real size change within a few frames, so growth is not delayed
+// by the confirmation (docs/measurements.md).
 int KcfTracker::Impl::confirmScale(int best) {
   const int unit = (static_cast<int>(scales.size()) - 1) / 2;
   const int side = best > unit ? 1 : (best < unit ? -1 : 0);

@@ -50,6 +50,10 @@ void LoomingEstimator::recordExpansion(const ExpansionMeasurement& m) {
   ++recent_count_;
 }
 
+// The trend needs at least two measured frames (half of kTrendFrames) for the expansions'
+// standard deviation below.
+static_assert(LoomingEstimator::kTrendFrames >= 4, "sizeTrend's t test needs two measured frames");
+
 int LoomingEstimator::sizeTrend() const {
   const int frames = std::min(recent_count_, kTrendFrames);
   double sum = 0.0;

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -69,6 +70,9 @@ TEST(SequenceGroundTruth, AbsentBoxes) {
   EXPECT_FALSE(isPresent(parse("   \r")));
   expectBox(parse("0,0,0,0"), 0, 0, 0, 0);
   EXPECT_TRUE(isPresent(parse("0,0,1,1")));
+  // A position that is not finite is no box either, whatever its size.
+  EXPECT_FALSE(isPresent(cv::Rect2f(std::numeric_limits<float>::infinity(), 10, 5, 5)));
+  EXPECT_FALSE(isPresent(cv::Rect2f(10, -std::numeric_limits<float>::infinity(), 5, 5)));
 }
 
 TEST(SequenceGroundTruth, PolygonBecomesBoundingBox) {
