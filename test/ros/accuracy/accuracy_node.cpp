@@ -108,6 +108,14 @@ struct Answer {
   float processing = 0.0f;  // the tracker's own processing_time, s
 };
 
+// The answers of a replay, frame by frame: what checkDelivery and the OTB scores take.
+struct AnswerTally {
+  std::vector<rt::FrameRecord> records;
+  std::vector<cv::Rect2f> predicted, truth;  // answered frames
+  std::vector<double> latency_ms, processing_ms;
+  int wrong_frame_id = 0;
+};
+
 class AccuracyTest : public ::testing::Test {
  public:
   AccuracyTest() : pnh_("~") {
@@ -208,6 +216,25 @@ class AccuracyTest : public ::testing::Test {
     if (!waitAnswer(frames_.size() - 1, answer_timeout_)) return;  // checkDelivery reports it
   }
 
+  // Called with mutex_ held, after the replay.
+  AnswerTally tallyAnswers() const {
+    AnswerTally t;
+    t.records.resize(frames_.size());
+    for (size_t i = 0; i < frames_.size(); ++i) {
+      const Answer& a = answers_[i];
+      // The first frame: one answer per sending is allowed (sendFirst).
+      t.records[i] = {sent_[i], a.arrival, i == 0 && a.count <= first_sends_ ? std::min(a.count, 1) : a.count};
+      if (a.count == 0) continue;
+      if (!a.same_frame_id) ++t.wrong_frame_id;
+      t.predicted.push_back(a.box);
+      t.truth.push_back(frames_[i].truth);
+      t.processing_ms.push_back(1e3 * a.processing);
+      // For the repeated first frame the latency is from its first sending: not a figure.
+      if (i > 0) t.latency_ms.push_back(1e3 * (a.arrival - sent_[i]));
+    }
+    return t;
+  }
+
   ros::NodeHandle nh_, pnh_;
   std::string bag_, skip_reason_, name_, pace_, gt_topic_, image_topic_, info_topic_, obstacles_topic_;
   bool use_info_ = true;
@@ -259,27 +286,12 @@ TEST_F(AccuracyTest, ReplayThroughTheNodelet) {
   spinner.stop();
   std::lock_guard<std::mutex> lock(mutex_);
 
-  std::vector<rt::FrameRecord> records(frames_.size());
-  std::vector<cv::Rect2f> predicted, truth;
-  std::vector<double> latency_ms, processing_ms;
-  int wrong_frame_id = 0;
-  for (size_t i = 0; i < frames_.size(); ++i) {
-    const Answer& a = answers_[i];
-    // The first frame: one answer per sending is allowed (sendFirst).
-    records[i] = {sent_[i], a.arrival, i == 0 && a.count <= first_sends_ ? std::min(a.count, 1) : a.count};
-    if (a.count == 0) continue;
-    if (!a.same_frame_id) ++wrong_frame_id;
-    predicted.push_back(a.box);
-    truth.push_back(frames_[i].truth);
-    processing_ms.push_back(1e3 * a.processing);
-    // For the repeated first frame the latency is from its first sending: not a figure.
-    if (i > 0) latency_ms.push_back(1e3 * (a.arrival - sent_[i]));
-  }
+  const AnswerTally tally = tallyAnswers();
   // A frame the nodelet drops without an earlier one in processing was pushed out of one of its
   // queues (image and camera_info subscriptions, FrameSlot), each kIdleBacklog deep.
   const rt::DeliveryReport delivery =
-      rt::checkDelivery(records, static_cast<int>(obstacle_tracker::bridge::FrameSlot<int>::kIdleBacklog));
-  const ev::OtbScores otb = ev::otbScores(predicted, truth);
+      rt::checkDelivery(tally.records, static_cast<int>(obstacle_tracker::bridge::FrameSlot<int>::kIdleBacklog));
+  const ev::OtbScores otb = ev::otbScores(tally.predicted, tally.truth);
   std::printf(
       "[ RESULT  ] %s (%s, play rate %.2f): %d frames sent, %d answered, %d dropped (%d while idle), "
       "%d doubled, %d out of order, %d unknown stamps\n"
@@ -290,13 +302,13 @@ TEST_F(AccuracyTest, ReplayThroughTheNodelet) {
       name_.c_str(), pace_.c_str(), play_rate_, delivery.sent, delivery.answered, delivery.dropped,
       delivery.dropped_while_idle, delivery.doubled, delivery.out_of_order, unknown_, name_.c_str(),
       otb.precision20, min_precision20_, otb.auc, min_auc_, delivery.answered, otb.mean_centre_error,
-      otb.lost_fraction, name_.c_str(), percentile(latency_ms, 50), percentile(latency_ms, 95),
-      percentile(latency_ms, 100), percentile(processing_ms, 50), percentile(processing_ms, 99),
-      processing_ms.empty() ? NAN : processing_ms.front());
+      otb.lost_fraction, name_.c_str(), percentile(tally.latency_ms, 50), percentile(tally.latency_ms, 95),
+      percentile(tally.latency_ms, 100), percentile(tally.processing_ms, 50), percentile(tally.processing_ms, 99),
+      tally.processing_ms.empty() ? NAN : tally.processing_ms.front());
   std::fflush(stdout);
 
   EXPECT_EQ(unknown_, 0) << "ObstacleArrays whose stamp was never sent";
-  EXPECT_EQ(wrong_frame_id, 0) << "ObstacleArrays with another frame_id than their image";
+  EXPECT_EQ(tally.wrong_frame_id, 0) << "ObstacleArrays with another frame_id than their image";
   EXPECT_EQ(delivery.doubled, 0) << "frames answered more than once";
   EXPECT_EQ(delivery.out_of_order, 0) << "answers out of the order of the frames";
   EXPECT_EQ(delivery.dropped_while_idle, 0)

@@ -117,22 +117,157 @@ void onDiagnostics(const diagnostic_msgs::DiagnosticArray::ConstPtr& msg) {
   }
 }
 
+struct LoadSettings {
+  double duration = 60.0;  // s
+  double rate = 200.0;     // Hz
+  int width = 1280, height = 720;
+  std::string encoding = "mono8";
+  double warmup = 0.0;  // s
+  double window = 0.0;  // s: the latency comparison windows
+};
+
+LoadSettings readSettings(const ros::NodeHandle& pnh) {
+  LoadSettings s;
+  pnh.param("duration", s.duration, s.duration);
+  pnh.param("rate", s.rate, s.rate);
+  pnh.param("width", s.width, s.width);
+  pnh.param("height", s.height, s.height);
+  pnh.param("encoding", s.encoding, s.encoding);
+  s.warmup = std::min(10.0, s.duration / 4.0);
+  pnh.param("warmup", s.warmup, s.warmup);
+  s.window = std::min(10.0, (s.duration - s.warmup) / 2.0);
+  return s;
+}
+
+// A textured background, drawn once.
+sensor_msgs::Image texturedFrame(const LoadSettings& s) {
+  sensor_msgs::Image img = rel::squareImage(s.width, s.height, 0, 0, 0, s.encoding);
+  img.header.frame_id = "camera";
+  for (std::size_t i = 0; i < img.data.size(); ++i) {
+    img.data[i] = static_cast<std::uint8_t>(img.data[i] + ((i * 2654435761u) >> 28));
+  }
+  return img;
+}
+
+// The background with a bright square that moves and grows slowly, at t s of `duration`.
+void drawFrame(const LoadSettings& s, const std::vector<std::uint8_t>& background, double t, sensor_msgs::Image& img) {
+  const int channels = s.encoding == "bgr8" ? 3 : 1;
+  const int side = 40 + static_cast<int>(20 * t / s.duration);
+  const int x = static_cast<int>(s.width / 2 + s.width / 4 * std::sin(t * 0.7)) - side / 2;
+  const int y = static_cast<int>(s.height / 2 + s.height / 6 * std::cos(t * 0.5)) - side / 2;
+  std::copy(background.begin(), background.end(), img.data.begin());
+  for (int r = std::max(0, y); r < std::min(s.height, y + side); ++r) {
+    std::fill(img.data.begin() + static_cast<long>(r) * img.step + std::max(0, x) * channels,
+              img.data.begin() + static_cast<long>(r) * img.step + std::min(s.width, x + side) * channels, 230);
+  }
+}
+
+// One frame, answered, before the load. The nodelet counts frames lost before its callback from
+// gaps in the sequence numbers, which needs a frame it received before them: a loaded machine that
+// did not run its callback thread while the first frames arrived would otherwise lose them
+// uncounted. This frame is not one of the recorded ones.
+bool handshake(const ros::Publisher& pub, sensor_msgs::Image& img) {
+  img.header.stamp = ros::Time::now();
+  pub.publish(img);
+  std::unique_lock<std::mutex> lock(state->mutex);
+  state->answered.wait_for(lock, std::chrono::seconds(60), [] { return state->handshake_answered; });
+  return state->handshake_answered;
+}
+
+struct LoadRun {
+  long published = 0;
+  double elapsed = 0.0;      // s
+  std::vector<Sample> rss;   // MiB of the manager, every 0.1 s
+  bool alive = false;        // the manager at the end
+};
+
+// Publishes frames at s.rate for s.duration, recording each frame sent and the manager's RSS;
+// then waits for the last frame's answer (a hang guard, not a speed bar) and the last diagnostics.
+LoadRun publishLoad(const LoadSettings& s, const ros::Publisher& pub, int pid, sensor_msgs::Image& img) {
+  const std::vector<std::uint8_t> background = img.data;
+  LoadRun run;
+  state->start = ros::WallTime::now();
+  state->started = true;
+  ros::WallRate loop(s.rate);
+  double next_rss = 0.0;
+  double t = 0.0;
+  while ((t = (ros::WallTime::now() - state->start).toSec()) < s.duration && ros::ok()) {
+    drawFrame(s, background, t, img);
+    img.header.stamp = ros::Time::now();
+    {
+      std::lock_guard<std::mutex> lock(state->mutex);
+      state->index[img.header.stamp] = state->frames.size();
+      rt::FrameRecord record;
+      record.sent = (ros::WallTime::now() - state->start).toSec();
+      state->frames.push_back(record);
+    }
+    pub.publish(img);
+    ++run.published;
+    if (t >= next_rss) {
+      run.rss.push_back({t, rel::residentKiB(pid) / 1024.0});
+      next_rss += 0.1;
+    }
+    loop.sleep();
+  }
+  run.elapsed = (ros::WallTime::now() - state->start).toSec();
+  run.alive = rel::processAlive(pid);
+  {
+    std::unique_lock<std::mutex> lock(state->mutex);
+    state->answered.wait_for(lock, std::chrono::seconds(60), [] { return state->frames.back().answers > 0; });
+  }
+  ros::WallDuration(2.5).sleep();  // the last diagnostics, and any doubled answer
+  state->started = false;
+  return run;
+}
+
+// Figures of a run, from the recorded frames and answers (state's mutex held).
+struct LoadFigures {
+  rt::DeliveryReport delivery;
+  int answered_after_end = 0;  // earlier frames answered after the last one was sent
+  double latency_first = 0.0, latency_last = 0.0;  // s, medians of the first and last windows
+  double rss_warm = 0.0, rss_end = 0.0, rss_max = 0.0;  // MiB
+};
+
+LoadFigures figuresOf(const LoadSettings& s, const LoadRun& run) {
+  LoadFigures f;
+  // A frame dropped without an earlier one in processing was pushed out of the subscription queue
+  // or the FrameSlot's idle backlog, each kQueueDepth deep.
+  f.delivery = rt::checkDelivery(state->frames, kQueueDepth);
+  const double last_sent = state->frames.back().sent;
+  for (std::size_t i = 0; i + 1 < state->frames.size(); ++i) {
+    if (state->frames[i].answers > 0 && state->frames[i].answered > last_sent) ++f.answered_after_end;
+  }
+  f.latency_first = median(window(state->latency, s.warmup, s.warmup + s.window));
+  f.latency_last = median(window(state->latency, run.elapsed - s.window, run.elapsed + 1.0));
+  f.rss_warm = median(window(run.rss, s.warmup, s.warmup + 5.0));
+  f.rss_end = median(window(run.rss, run.elapsed - 5.0, run.elapsed + 1.0));
+  for (const Sample& r : run.rss) f.rss_max = std::max(f.rss_max, r.value);
+  return f;
+}
+
+void printFigures(const LoadSettings& s, const LoadRun& run, const LoadFigures& f) {
+  const rt::DeliveryReport& d = f.delivery;
+  std::printf("load: %dx%d %s, %.0f Hz asked, %ld frames in %.1f s (%.1f Hz published)\n", s.width, s.height,
+              s.encoding.c_str(), s.rate, run.published, run.elapsed, run.published / run.elapsed);
+  std::printf("load: %zu outputs (%.1f Hz); diagnostics: %.0f processed, %.0f dropped\n", state->latency.size(),
+              state->latency.size() / run.elapsed, state->processed_total, state->dropped_total);
+  std::printf("load: %d sent, %d answered, %d dropped (%d while idle, %d pushed out of a full backlog), "
+              "%d doubled, %d out of order, %d unknown stamps; %d earlier frames answered after the last was sent\n",
+              d.sent, d.answered, d.dropped, d.dropped_while_idle, d.dropped_by_backlog, d.doubled, d.out_of_order,
+              state->unknown, f.answered_after_end);
+  std::printf("load: latency median %.1f ms in [%.0f, %.0f) s, %.1f ms in the last %.0f s\n", 1e3 * f.latency_first,
+              s.warmup, s.warmup + s.window, 1e3 * f.latency_last, s.window);
+  std::printf("load: manager VmRSS %.1f MiB after warm-up, %.1f MiB at the end (max %.1f MiB)\n", f.rss_warm,
+              f.rss_end, f.rss_max);
+  std::fflush(stdout);
+}
+
 }  // namespace
 
 TEST(Load, NewestFrameBoundedMemoryDropsCounted) {
   ros::NodeHandle nh, pnh("~");
-  double duration = 60.0, rate = 200.0;
-  int width = 1280, height = 720;
-  std::string encoding = "mono8";
-  pnh.param("duration", duration, duration);
-  pnh.param("rate", rate, rate);
-  pnh.param("width", width, width);
-  pnh.param("height", height, height);
-  pnh.param("encoding", encoding, encoding);
-  double warmup = std::min(10.0, duration / 4.0);
-  pnh.param("warmup", warmup, warmup);
-  const double win = std::min(10.0, (duration - warmup) / 2.0);  // latency comparison windows
-  ASSERT_GT(win, 1.0) << "duration too short";
+  const LoadSettings settings = readSettings(pnh);
+  ASSERT_GT(settings.window, 1.0) << "duration too short";
 
   ros::Publisher pub = nh.advertise<sensor_msgs::Image>("/load/image", kPublisherQueue);
   // Deep: on a loaded machine this node's own callback thread falls behind, and an answer lost
@@ -147,115 +282,30 @@ TEST(Load, NewestFrameBoundedMemoryDropsCounted) {
   const int pid = rel::nodePid("/manager");
   ASSERT_GT(pid, 0) << "cannot get the manager's pid";
 
-  // A textured background (drawn once) and a square that moves and grows slowly.
-  sensor_msgs::Image img = rel::squareImage(width, height, 0, 0, 0, encoding);
-  img.header.frame_id = "camera";
-  for (std::size_t i = 0; i < img.data.size(); ++i) {
-    img.data[i] = static_cast<std::uint8_t>(img.data[i] + ((i * 2654435761u) >> 28));
-  }
-  const std::vector<std::uint8_t> background = img.data;
-  const int channels = encoding == "bgr8" ? 3 : 1;
-
-  // Handshake: one frame, answered, before the load. The nodelet counts frames lost before its
-  // callback from gaps in the sequence numbers, which needs a frame it received before them: a
-  // loaded machine that did not run its callback thread while the first frames arrived would
-  // otherwise lose them uncounted. This frame is not one of the recorded ones.
-  img.header.stamp = ros::Time::now();
-  pub.publish(img);
-  {
-    std::unique_lock<std::mutex> lock(state->mutex);
-    state->answered.wait_for(lock, std::chrono::seconds(60), [] { return state->handshake_answered; });
-    ASSERT_TRUE(state->handshake_answered) << "the handshake frame was not answered within 60 s";
-  }
-
-  std::vector<Sample> rss;  // MiB
-  state->start = ros::WallTime::now();
-  state->started = true;
-  ros::WallRate loop(rate);
-  long published = 0;
-  double next_rss = 0.0;
-  double t = 0.0;
-  while ((t = (ros::WallTime::now() - state->start).toSec()) < duration && ros::ok()) {
-    const int side = 40 + static_cast<int>(20 * t / duration);
-    const int x = static_cast<int>(width / 2 + width / 4 * std::sin(t * 0.7)) - side / 2;
-    const int y = static_cast<int>(height / 2 + height / 6 * std::cos(t * 0.5)) - side / 2;
-    std::copy(background.begin(), background.end(), img.data.begin());
-    for (int r = std::max(0, y); r < std::min(height, y + side); ++r) {
-      std::fill(img.data.begin() + static_cast<long>(r) * img.step + std::max(0, x) * channels,
-                img.data.begin() + static_cast<long>(r) * img.step + std::min(width, x + side) * channels, 230);
-    }
-    img.header.stamp = ros::Time::now();
-    {
-      std::lock_guard<std::mutex> lock(state->mutex);
-      state->index[img.header.stamp] = state->frames.size();
-      rt::FrameRecord record;
-      record.sent = (ros::WallTime::now() - state->start).toSec();
-      state->frames.push_back(record);
-    }
-    pub.publish(img);
-    ++published;
-    if (t >= next_rss) {
-      rss.push_back({t, rel::residentKiB(pid) / 1024.0});
-      next_rss += 0.1;
-    }
-    loop.sleep();
-  }
-  const double elapsed = (ros::WallTime::now() - state->start).toSec();
-  const bool alive = rel::processAlive(pid);
-  {
-    // The last frame is never dropped: wait for its answer (a hang guard, not a speed bar).
-    std::unique_lock<std::mutex> lock(state->mutex);
-    state->answered.wait_for(lock, std::chrono::seconds(60), [] { return state->frames.back().answers > 0; });
-  }
-  ros::WallDuration(2.5).sleep();  // the last diagnostics, and any doubled answer
-  state->started = false;
+  sensor_msgs::Image img = texturedFrame(settings);
+  ASSERT_TRUE(handshake(pub, img)) << "the handshake frame was not answered within 60 s";
+  const LoadRun run = publishLoad(settings, pub, pid, img);
 
   std::lock_guard<std::mutex> lock(state->mutex);
-  // A frame dropped without an earlier one in processing was pushed out of the subscription queue
-  // or the FrameSlot's idle backlog, each kQueueDepth deep.
-  const rt::DeliveryReport delivery = rt::checkDelivery(state->frames, kQueueDepth);
-  const double last_sent = state->frames.back().sent;
-  int answered_after_end = 0;
-  for (std::size_t i = 0; i + 1 < state->frames.size(); ++i) {
-    if (state->frames[i].answers > 0 && state->frames[i].answered > last_sent) ++answered_after_end;
-  }
-  const double first = median(window(state->latency, warmup, warmup + win));
-  const double last = median(window(state->latency, elapsed - win, elapsed + 1.0));
-  const double rss_warm = median(window(rss, warmup, warmup + 5.0));
-  const double rss_end = median(window(rss, elapsed - 5.0, elapsed + 1.0));
-  double rss_max = 0.0;
-  for (const Sample& s : rss) rss_max = std::max(rss_max, s.value);
-  std::printf("load: %dx%d %s, %.0f Hz asked, %ld frames in %.1f s (%.1f Hz published)\n", width, height,
-              encoding.c_str(), rate, published, elapsed, published / elapsed);
-  std::printf("load: %zu outputs (%.1f Hz); diagnostics: %.0f processed, %.0f dropped\n", state->latency.size(),
-              state->latency.size() / elapsed, state->processed_total, state->dropped_total);
-  std::printf("load: %d sent, %d answered, %d dropped (%d while idle, %d pushed out of a full backlog), "
-              "%d doubled, %d out of order, %d unknown stamps; %d earlier frames answered after the last was sent\n",
-              delivery.sent, delivery.answered, delivery.dropped, delivery.dropped_while_idle,
-              delivery.dropped_by_backlog, delivery.doubled,
-              delivery.out_of_order, state->unknown, answered_after_end);
-  std::printf("load: latency median %.1f ms in [%.0f, %.0f) s, %.1f ms in the last %.0f s\n", 1e3 * first, warmup,
-              warmup + win, 1e3 * last, win);
-  std::printf("load: manager VmRSS %.1f MiB after warm-up, %.1f MiB at the end (max %.1f MiB)\n", rss_warm,
-              rss_end, rss_max);
-  std::fflush(stdout);
-
-  EXPECT_TRUE(alive) << "the nodelet manager died under load";
-  ASSERT_FALSE(std::isnan(first)) << "no output in the first window";
-  ASSERT_FALSE(std::isnan(last)) << "no output in the last window: the tracker stopped";
+  const LoadFigures f = figuresOf(settings, run);
+  printFigures(settings, run, f);
+  const rt::DeliveryReport& delivery = f.delivery;
+  EXPECT_TRUE(run.alive) << "the nodelet manager died under load";
+  ASSERT_FALSE(std::isnan(f.latency_first)) << "no output in the first window";
+  ASSERT_FALSE(std::isnan(f.latency_last)) << "no output in the last window: the tracker stopped";
   EXPECT_EQ(state->unknown, 0) << "ObstacleArrays whose stamp was never sent";
   EXPECT_EQ(delivery.doubled, 0) << "frames answered more than once";
   EXPECT_EQ(delivery.out_of_order, 0) << "answers out of the order of the frames";
   EXPECT_EQ(delivery.dropped_while_idle, 0)
       << "frames dropped with no earlier frame in processing (first 20):" << delivery.idle_drops;
   EXPECT_TRUE(delivery.last_answered) << "the last frame sent was not answered";
-  EXPECT_LE(answered_after_end, kMaxAnsweredAfterEnd) << "frames are queued instead of dropped";
+  EXPECT_LE(f.answered_after_end, kMaxAnsweredAfterEnd) << "frames are queued instead of dropped";
   // The nodelet's fixed queues may fill up for the first time after warm-up (a stalled thread on a
   // loaded machine) and the allocator keeps that memory: growth beyond 5 MiB plus what they hold
   // is unbounded growth.
   const double held_mib = kNodeletHeldFrames * static_cast<double>(img.data.size()) / (1024.0 * 1024.0);
-  EXPECT_LT(rss_end - rss_warm, 5.0 + held_mib)
-      << "resident set grew by " << rss_end - rss_warm << " MiB (the queues hold " << held_mib << " MiB)";
+  EXPECT_LT(f.rss_end - f.rss_warm, 5.0 + held_mib)
+      << "resident set grew by " << f.rss_end - f.rss_warm << " MiB (the queues hold " << held_mib << " MiB)";
   // Whatever this machine's speed, the diagnostics count exactly the frames that were never
   // processed: the frames sent (and the handshake frame) less those the diagnostics processed.
   // An answer can still be lost on its way here if this node's callback thread is not scheduled
@@ -269,7 +319,8 @@ TEST(Load, NewestFrameBoundedMemoryDropsCounted) {
   EXPECT_GE(lost_in_transport, 0.0) << "more frames processed than sent";
   EXPECT_LE(lost_in_transport, 0.001 * delivery.sent + 5.0) << "answers lost on the way to the subscriber";
   if (delivery.dropped == 0) {
-    std::printf("load: the tracker kept up with %.0f Hz: nothing was dropped, the drop rule was not exercised\n", rate);
+    std::printf("load: the tracker kept up with %.0f Hz: nothing was dropped, the drop rule was not exercised\n",
+                settings.rate);
   }
 }
 
