@@ -13,9 +13,9 @@
 #include <cv_bridge/cv_bridge.h>
 #include <pluginlib/class_list_macros.hpp>
 
+#include "obstacle_tracker/core/overlay_drawing.h"
 #include "obstacle_tracker/ros/conversions.h"
 #include "obstacle_tracker/ros/markers.h"
-#include "obstacle_tracker/ros/overlay.h"
 
 namespace obstacle_tracker {
 
@@ -253,7 +253,9 @@ void ObstacleTrackerNodelet::publishOverlay(const sensor_msgs::Image& image, con
   char status[160];
   std::snprintf(status, sizeof(status), "%s  obstacles: %zu  %.1f ms", core::toString(state),
                 obstacles_.size(), processing * 1e3);
-  bridge::drawOverlay(frame, obstacles_, status, overlay_);
+  core::OverlayExtras extras;
+  extras.status = status;
+  core::drawOverlay(frame, obstacles_, extras, overlay_);
   debug_pub_.publish(cv_bridge::CvImage(image.header, "bgr8", overlay_).toImageMsg());
 }
 

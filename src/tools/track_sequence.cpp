@@ -24,10 +24,10 @@
 #include <vector>
 
 #include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 
 #include "command_line.h"
+#include "obstacle_tracker/core/overlay_drawing.h"
 #include "obstacle_tracker/core/params.h"
 #include "obstacle_tracker/core/pipeline.h"
 #include "obstacle_tracker/eval/sequence.h"
@@ -93,42 +93,6 @@ bool isVideoPath(const std::string& p) {
   return ext == ".mp4" || ext == ".avi" || ext == ".mkv" || ext == ".mov";
 }
 
-cv::Scalar stateColour(core::TrackState s) {
-  switch (s) {
-    case core::TrackState::kTracking:
-      return {0, 220, 0};
-    case core::TrackState::kRedetecting:
-      return {0, 200, 255};
-    case core::TrackState::kLost:
-      return {0, 0, 255};
-    default:
-      return {200, 200, 200};
-  }
-}
-
-void drawOverlay(cv::Mat& img, const std::vector<core::Obstacle>& obs, const cv::Rect2f& gt, int index) {
-  if (eval::isPresent(gt)) cv::rectangle(img, gt, cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
-  for (const auto& o : obs) {
-    const cv::Scalar c = stateColour(o.state);
-    cv::rectangle(img, o.box, c, 2, cv::LINE_AA);
-    char label[128];
-    if (std::isfinite(o.time_to_contact)) {
-      std::snprintf(label, sizeof(label), "#%d %.2f %s ttc %.1fs", o.id, o.confidence, core::toString(o.state),
-                    o.time_to_contact);
-    } else {
-      std::snprintf(label, sizeof(label), "#%d %.2f %s", o.id, o.confidence, core::toString(o.state));
-    }
-    const cv::Point org(static_cast<int>(o.box.x), std::max(12, static_cast<int>(o.box.y) - 4));
-    cv::putText(img, label, org, cv::FONT_HERSHEY_SIMPLEX, 0.4, cv::Scalar(0, 0, 0), 3, cv::LINE_AA);
-    cv::putText(img, label, org, cv::FONT_HERSHEY_SIMPLEX, 0.4, c, 1, cv::LINE_AA);
-  }
-  char text[64];
-  std::snprintf(text, sizeof(text), "frame %d  %s", index + 1, obs.empty() ? "searching" : "");
-  cv::putText(img, text, cv::Point(6, img.rows - 8), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(0, 0, 0), 3, cv::LINE_AA);
-  cv::putText(img, text, cv::Point(6, img.rows - 8), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(255, 255, 255), 1,
-              cv::LINE_AA);
-}
-
 void progress(int done, int total, double core_seconds) {
   const int width = 30;
   const double frac = total > 0 ? std::min(1.0, static_cast<double>(done) / total) : 0.0;
@@ -178,15 +142,19 @@ class OverlayOutput {
     }
   }
 
-  void write(const cv::Mat& frame, const std::vector<core::Obstacle>* obs, const cv::Rect2f& gt, int index,
-             double fps) {
-    if (frame.channels() == 1) {
-      cv::cvtColor(frame, canvas_, cv::COLOR_GRAY2BGR);
-    } else {
-      frame.copyTo(canvas_);
-    }
+  // The overlay of ~debug_image, with the ground truth and a banner of the frame number and the
+  // pipeline's state.
+  void write(const cv::Mat& frame, const std::vector<core::Obstacle>* obs, core::TrackState state,
+             const cv::Rect2f& gt, int index, double fps) {
     static const std::vector<core::Obstacle> kNone;
-    drawOverlay(canvas_, obs != nullptr ? *obs : kNone, gt, index);
+    const std::vector<core::Obstacle>& obstacles = obs != nullptr ? *obs : kNone;
+    char status[96];
+    std::snprintf(status, sizeof(status), "frame %d  %s  obstacles: %zu", index + 1, core::toString(state),
+                  obstacles.size());
+    core::OverlayExtras extras;
+    extras.status = status;
+    extras.ground_truth = gt;
+    core::drawOverlay(frame, obstacles, extras, canvas_);
     if (video_) {
       if (!writer_.isOpened()) openVideo(fps);
       writer_.write(canvas_);
@@ -243,6 +211,7 @@ class TimedTracker {
   }
 
   bool started() const { return started_; }
+  core::TrackState state() const { return pipeline_.state(); }
   double coreSeconds() const { return core_seconds_; }
   int coreFrames() const { return core_frames_; }
 
@@ -336,7 +305,7 @@ int run(const Options& opt) {
     const cv::Mat& frame = converter.convert(raw);
     const std::vector<core::Obstacle>* obs = tracker.track(frame, index / fps, index);
     writeFrameLine(out, mainObstacle(obs), opt.output);
-    if (overlay) overlay->write(frame, obs, seq.groundTruthAt(index), index, fps);
+    if (overlay) overlay->write(frame, obs, tracker.state(), seq.groundTruthAt(index), index, fps);
     ++index;
     progress_bar.update(index, tracker.coreSeconds());
   }

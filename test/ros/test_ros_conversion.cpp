@@ -16,7 +16,6 @@
 #include "obstacle_tracker/ros/camera_geometry.h"
 #include "obstacle_tracker/ros/conversions.h"
 #include "obstacle_tracker/ros/image_conversion.h"
-#include "obstacle_tracker/ros/overlay.h"
 #include "synthetic_frames.h"
 
 using obstacle_tracker::bridge::CameraGeometry;
@@ -326,17 +325,4 @@ TEST(Messages, ObstacleFieldsAndStates) {
   EXPECT_TRUE(std::isinf(msg.time_to_contact_sigma));
   EXPECT_EQ(obstacle_tracker::bridge::toMessageState(core::TrackState::kTracking), obstacle_tracker::Obstacle::STATE_TRACKING);
   EXPECT_EQ(obstacle_tracker::bridge::toMessageState(core::TrackState::kLost), obstacle_tracker::Obstacle::STATE_LOST);
-}
-
-TEST(Overlay, BoxIsDrawnInTheStateColour) {
-  const cv::Mat grey(120, 160, CV_8UC1, cv::Scalar(100));
-  core::Obstacle o;
-  o.id = 1;
-  o.box = cv::Rect2f(40.0f, 40.0f, 50.0f, 30.0f);
-  o.state = core::TrackState::kTracking;
-  cv::Mat out;
-  obstacle_tracker::bridge::drawOverlay(grey, {o}, "tracking", out);
-  ASSERT_EQ(out.type(), CV_8UC3);
-  EXPECT_EQ(out.at<cv::Vec3b>(55, 40), cv::Vec3b(0, 255, 0));  // left edge of the box
-  EXPECT_EQ(out.at<cv::Vec3b>(55, 65), cv::Vec3b(100, 100, 100));  // inside: untouched
 }
