@@ -20,9 +20,9 @@ ground-truth file (--score-boxes gives the tool's path; see score_boxes_tool.py 
 looked for otherwise). The frame rate is --fps, else the sequence's (the video's, else the `fps`
 of scene.yaml / fps.txt, else 30, the OTB convention).
 
-Needs Debian's python3-rosbag, python3-sensor-msgs, python3-opencv, and the package's generated
-Python messages: source <build>/devel/setup.bash, or put <build>/devel/lib/python3/dist-packages
-on PYTHONPATH (OT_DEVEL=<build>/devel also works).
+Needs Debian's python3-rosbag, python3-sensor-msgs, python3-cv-bridge, python3-opencv, and the
+package's generated Python messages: source <build>/devel/setup.bash, or put
+<build>/devel/lib/python3/dist-packages on PYTHONPATH (OT_DEVEL=<build>/devel also works).
 """
 import argparse
 import glob
@@ -125,7 +125,9 @@ class SequenceSource:
         return self.gt[i] if i < len(self.gt) else score_boxes_tool.ABSENT
 
 
-def image_message(img, encoding, Image):
+def image_message(img, encoding, header, bridge):
+    """The frame as a sensor_msgs/Image through cv_bridge: bgr8 or mono8, or mono16 for a 16-bit
+    frame; --encoding bgr8 / mono8 converts an 8-bit frame first."""
     import numpy as np
     cv2 = sys.modules["cv2"]
     if img.ndim == 3 and img.shape[2] == 4:
@@ -136,20 +138,13 @@ def image_message(img, encoding, Image):
         if img.dtype != np.uint8:
             sys.exit("sequence_to_bag: --encoding bgr8 with a 16-bit frame")
         img = cv2.cvtColor(img, cv2.COLOR_GRAY2BGR)
-    img = np.ascontiguousarray(img)
-    msg = Image()
-    msg.height, msg.width = img.shape[0], img.shape[1]
     if img.dtype == np.uint8:
-        msg.encoding = "bgr8" if img.ndim == 3 else "mono8"
+        ros_encoding = "bgr8" if img.ndim == 3 else "mono8"
     elif img.dtype == np.uint16 and img.ndim == 2:
-        msg.encoding = "mono16"
-        img = img.astype("<u2")
+        ros_encoding = "mono16"
     else:
         sys.exit("sequence_to_bag: unsupported frame type %s x %d" % (img.dtype, 1 if img.ndim == 2 else img.shape[2]))
-    msg.is_bigendian = 0
-    msg.step = img.strides[0]
-    msg.data = img.tobytes()
-    return msg
+    return bridge.cv2_to_imgmsg(img, ros_encoding, header)
 
 
 def main(argv=None):
@@ -177,7 +172,9 @@ def main(argv=None):
 
     import rosbag
     import rospy
-    from sensor_msgs.msg import CameraInfo, Image
+    from cv_bridge import CvBridge
+    from sensor_msgs.msg import CameraInfo
+    from std_msgs.msg import Header
     Obstacle, ObstacleArray = import_messages()
 
     src = SequenceSource(args.sequence, args.gt, args.score_boxes)
@@ -188,15 +185,13 @@ def main(argv=None):
     if not src.gt and not args.quiet:
         print("sequence_to_bag: no ground truth found; %s carries empty arrays" % args.gt_topic, file=sys.stderr)
     written = 0
+    bridge = CvBridge()
     with rosbag.Bag(args.bag, "w") as bag:
         for i, img in enumerate(src.frames()):
             if args.max_frames > 0 and i >= args.max_frames:
                 break
             stamp = rospy.Time.from_sec(args.start_stamp + i / fps)
-            im = image_message(img, args.encoding, Image)
-            im.header.seq = i
-            im.header.stamp = stamp
-            im.header.frame_id = args.frame_id
+            im = image_message(img, args.encoding, Header(seq=i, stamp=stamp, frame_id=args.frame_id), bridge)
             h, w = im.height, im.width
             f_default = src.meta.get("focal_length_px") or (0.5 * w / math.tan(math.radians(args.hfov) / 2))
             fx = args.fx or f_default

@@ -30,7 +30,7 @@ PACKAGES=(
   tf2-tools  # Debian ships tf2_ros's static_transform_publisher (launch files, rostests) in it
   librosbag-dev python3-rosbag librostest-dev python3-rostest python3-sensor-msgs
   rosbash python3-rostopic python3-rosnode python3-rosmsg python3-rosparam python3-roslaunch python3-diagnostic-msgs
-  python3-numpy python3-matplotlib python3-yaml python3-opencv
+  python3-numpy python3-matplotlib python3-yaml python3-opencv python3-cv-bridge
   clang libclang-rt-14-dev valgrind
   rviz xvfb imagemagick stress-ng
 )
