@@ -89,8 +89,9 @@ if(CATKIN_ENABLE_TESTING)
     add_rostest(${rel} DEPENDENCIES obstacle_tracker_nodelet ${OT_NODES} ${OT_ROSTEST_DEPS})
   endforeach()
 
-  # rviz shows the overlay: rviz under Xvfb with config/obstacle_tracker.rviz, a screenshot, the
-  # box colour found in it (skipped with a message where rviz / Xvfb / ImageMagick are missing).
+  # rviz shows the overlay as its main view: rviz under Xvfb with config/obstacle_tracker.rviz, a
+  # screenshot, the box colour, the overlay's share of the screen and the bearing arrow found in it
+  # (skipped with a message where rviz / Xvfb / ImageMagick are missing).
   add_test(NAME rviz_overlay_screenshot
     COMMAND bash ${PROJECT_SOURCE_DIR}/test/ros/rviz_screenshot.sh ${CATKIN_DEVEL_PREFIX}
             ${CMAKE_BINARY_DIR}/test_results/rviz)

@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # rviz overlay test: starts rviz under Xvfb with config/obstacle_tracker.rviz (through
 # launch/tracker.launch rviz:=true) while synthetic frames are published, takes screenshots with
-# ImageMagick's import and passes when the overlay's box colour (pure green, tracking) is visible
-# and, in the 3D view, the ~markers bearing arrow of an obstacle that is not closing (cyan, a
-# confirmed track with confidence >= 0.5; ros/markers.h).
+# ImageMagick's import and passes when the overlay's box colour (pure green, tracking) is visible,
+# the overlay is the main view (its sky, synthetic_frames.h, covers at least 30 % of the screen,
+# which a small dock panel beside the 3D view does not) and, in the 3D view, the ~markers bearing
+# arrow of an obstacle that is not closing (cyan, a confirmed track with confidence >= 0.5;
+# ros/markers.h).
 # Skipped, with exit 0 and a SKIPPED message, where rviz, Xvfb or ImageMagick is not installed.
 #   usage: rviz_screenshot.sh DEVEL_DIR OUT_DIR
 set -u
@@ -11,7 +13,7 @@ DEVEL=${1:?devel dir}
 OUT=${2:?output dir}
 HERE=$(cd "$(dirname "$0")" && pwd)
 
-for tool in rviz xvfb-run Xvfb /usr/bin/import; do
+for tool in rviz xvfb-run Xvfb /usr/bin/import /usr/bin/identify; do
   if ! command -v "$tool" >/dev/null 2>&1; then
     echo "SKIPPED: rviz screenshot test: '$tool' is not installed (apt-get install rviz xvfb imagemagick)"
     exit 0
@@ -56,6 +58,7 @@ restarts=0
 status=1
 green=0
 cyan=0
+sky_share=0
 for attempt in $(seq 1 40); do
   sleep 3
   if ! kill -0 "$LAUNCH" 2>/dev/null; then
@@ -74,17 +77,22 @@ for attempt in $(seq 1 40); do
   /usr/bin/import -window root "$SHOT" 2>/dev/null || continue
   green=$("$DEVEL/lib/obstacle_tracker/tool_count_colour" "$SHOT" 0 255 0 60 || echo 0)
   cyan=$("$DEVEL/lib/obstacle_tracker/tool_count_colour" "$SHOT" 255 255 0 60 || echo 0)
-  echo "screenshot $attempt: $green overlay-green pixels, $cyan bearing-arrow cyan pixels"
+  # The published frames' sky runs from BGR (170, 100, 40) to (210, 160, 110): all of it within 36
+  # of the middle, and nothing else rviz draws is.
+  sky=$("$DEVEL/lib/obstacle_tracker/tool_count_colour" "$SHOT" 190 130 75 36 || echo 0)
+  sky_share=$(( 100 * sky / ($(/usr/bin/identify -format '%w*%h' "$SHOT")) ))
+  echo "screenshot $attempt: $green overlay-green pixels, $sky_share % of the screen overlay sky, $cyan bearing-arrow cyan pixels"
   # The drawn box: at least a few dozen pixels of its outline after rviz scales the image; the
-  # arrow (5 m long, 5 cm thick, seen from 10 m): at least a hundred.
-  if [ "$green" -ge 40 ] && [ "$cyan" -ge 100 ]; then status=0; break; fi
+  # overlay: the main part of the window; the arrow (5 m long, 5 cm thick, seen from 10 m): at
+  # least a hundred.
+  if [ "$green" -ge 40 ] && [ "$sky_share" -ge 30 ] && [ "$cyan" -ge 100 ]; then status=0; break; fi
 done
 stop
 
 if [ $status -eq 0 ]; then
-  echo "PASSED: rviz shows the overlay box ($green green pixels) and the bearing arrow ($cyan cyan pixels), screenshot $SHOT"
+  echo "PASSED: rviz shows the overlay box ($green green pixels) in the main view ($sky_share % of the screen) and the bearing arrow ($cyan cyan pixels), screenshot $SHOT"
 else
-  echo "FAILED: no overlay box ($green green pixels) or no bearing arrow ($cyan cyan pixels) in rviz's window after 120 s (last screenshot $SHOT, log $LOG)"
+  echo "FAILED: no overlay box ($green green pixels), overlay not the main view ($sky_share % of the screen, < 30 %) or no bearing arrow ($cyan cyan pixels) in rviz's window after 120 s (last screenshot $SHOT, log $LOG)"
   tail -20 "$LOG"
 fi
 exit $status
