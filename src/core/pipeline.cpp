@@ -20,6 +20,21 @@ namespace core {
 
 using namespace pipeline_detail;  // NOLINT(build/namespaces): the pipeline's own constants
 
+namespace {
+
+// A new track's answer on its first frame: the training sample itself (full peak and PSR).
+KcfResult firstAnswer(const cv::Rect2f& box) {
+  KcfResult r;
+  r.box = box;
+  r.peak = 1.0f;
+  r.psr = KcfTracker::kConfidencePsrFull;
+  r.confidence = 1.0f;
+  r.model_updated = true;
+  return r;
+}
+
+}  // namespace
+
 void Pipeline::Impl::resetAll() {
   while (!tracks.empty()) {
     pool.push_back(std::move(tracks.back()));
@@ -48,9 +63,9 @@ void Pipeline::Impl::applyPending() {
   // The surplus of a smaller max_obstacles goes from the back; a challenger is not one of the
   // max_obstacles tracks and stays.
   int kept = 0;
-  for (const auto& t : tracks) kept += t->probation ? 0 : 1;
+  for (const auto& t : tracks) kept += t->status.probation ? 0 : 1;
   for (std::size_t i = tracks.size(); i-- > 0 && kept > params.max_obstacles;) {
-    if (tracks[i]->probation) continue;
+    if (tracks[i]->status.probation) continue;
     pool.push_back(std::move(tracks[i]));
     tracks.erase(tracks.begin() + static_cast<long>(i));
     --kept;
@@ -69,7 +84,7 @@ void Pipeline::Impl::beginFrame(const cv::Mat& frame, double stamp, const char* 
   ++frame_index;
   // Tracks reported lost last frame are gone now.
   for (std::size_t i = 0; i < tracks.size();) {
-    if (tracks[i]->state == TrackState::kLost) {
+    if (tracks[i]->status.state == TrackState::kLost) {
       pool.push_back(std::move(tracks[i]));
       tracks.erase(tracks.begin() + static_cast<long>(i));
     } else {
@@ -89,24 +104,13 @@ Pipeline::Impl::Track& Pipeline::Impl::newTrack(const cv::Mat& frame, double sta
     t = std::make_unique<Track>(params, params);  // the filter's and the loop's groups
   }
   t->kcf.init(frame, box);
-  t->id = next_id++;
-  t->state = TrackState::kTracking;
-  t->box = box;
+  t->status = Track::Status{next_id++, TrackState::kTracking, box};
   t->motion = Track::Motion{box, stamp};
-  t->failures = 0;
-  t->age = 0;
-  t->result = KcfResult();
-  t->result.box = box;
-  t->result.peak = 1.0f;
-  t->result.psr = KcfTracker::kConfidencePsrFull;
-  t->result.confidence = 1.0f;
-  t->result.model_updated = true;
-  t->peaks = Track::PeakMeans();
+  t->result = firstAnswer(box);
   t->gate = Track::FilterGate();
   t->looming.start(frame, stamp, box);
-  t->contrast_ref = contrast.measure(frame, box);
+  t->refs = Track::References{contrast.measure(frame, box)};
   t->verification = Track::Verification();
-  t->probation = false;
   tracks.push_back(std::move(t));
   return *tracks.back();
 }
@@ -127,30 +131,30 @@ void Pipeline::Impl::report() {
   // Best first (state, then age), stable. An insertion sort over the few tracks: std::stable_sort
   // takes a temporary buffer from the heap on every call (test_pipeline_memory).
   const auto before = [](const Track& a, const Track& b) {
-    const int ra = stateRank(a.state), rb = stateRank(b.state);
+    const int ra = stateRank(a.status.state), rb = stateRank(b.status.state);
     if (ra != rb) return ra < rb;
-    return a.age > b.age;
+    return a.status.age > b.status.age;
   };
   for (std::size_t i = 1; i < tracks.size(); ++i) {
     for (std::size_t j = i; j > 0 && before(*tracks[j], *tracks[j - 1]); --j) std::swap(tracks[j], tracks[j - 1]);
   }
   out.clear();
   for (const auto& t : tracks) {
-    if (t->probation) continue;
+    if (t->status.probation) continue;
     Obstacle o;
-    o.id = t->id;
-    o.box = t->box;
+    o.id = t->status.id;
+    o.box = t->status.box;
     o.confidence = std::min(1.0f, std::max(0.0f, t->result.confidence));
     o.confirmed = t->verification.verified;
     if (!o.confirmed) o.confidence = std::min(o.confidence, kUnconfirmedConfidenceCap);
     o.peak = t->result.peak;
     o.psr = t->result.psr;
-    o.state = t->state;
+    o.state = t->status.state;
     o.expansion_rate = t->looming.expansionRate();
     o.expansion_rate_sigma = t->looming.expansionRateSigma();
     o.time_to_contact = t->looming.timeToContact();
     o.time_to_contact_sigma = t->looming.timeToContactSigma();
-    o.age = t->age;
+    o.age = t->status.age;
     o.model_updated = t->result.model_updated;
     out.push_back(o);
   }

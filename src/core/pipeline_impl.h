@@ -108,8 +108,19 @@ inline int stateRank(TrackState s) {
 }  // namespace pipeline_detail
 
 struct Pipeline::Impl {
-  // One obstacle's state; newTrack() resets each part as a whole.
+  // One obstacle's state; newTrack() resets each part as a whole (the filter and the looming
+  // estimator by their own init and start).
   struct Track {
+    // What is reported for the track this frame, and how it stands.
+    struct Status {
+      int id = -1;
+      TrackState state = TrackState::kTracking;
+      cv::Rect2f box;  // box reported this frame
+      int failures = 0;  // consecutive frames without an accepted box
+      int age = 0;       // frames since the start
+      // A challenger (search()): tracked but not reported until it replaces an unverified track.
+      bool probation = false;
+    };
     // Where the object was last seen well and how its centre moves (px/s, an EMA of the good
     // frames' displacements): the re-detection's prediction.
     struct Motion {
@@ -118,10 +129,13 @@ struct Pipeline::Impl {
       cv::Point2f velocity{0.0f, 0.0f};
       bool have_velocity = false;
     };
-    // Running means of the peak and PSR on good frames (LMCF, Wang et al. CVPR 2017).
-    struct PeakMeans {
-      float ref_peak = 0.0f, ref_psr = 0.0f;
-      int ref_count = 0;
+    // What a frame's answer is judged against: the contrast of the box the filter (re)started on
+    // (TargetContrast), and the running means of the peak and PSR on good frames (LMCF, Wang et
+    // al. CVPR 2017).
+    struct References {
+      float contrast = 0.0f;
+      float peak = 0.0f, psr = 0.0f;
+      int count = 0;  // good frames in the means
     };
     // What is currently set in the filter (configureFilter sets it only when it changes).
     struct FilterGate {
@@ -142,21 +156,14 @@ struct Pipeline::Impl {
     Track(const TrackerParams& filter, const LoopParams& loop) : kcf(filter) {
       looming.setParams(loop.looming_rate_noise, loop.looming_from_pixels);
     }
-    int id = -1;
     KcfTracker kcf;
     LoomingEstimator looming;
-    TrackState state = TrackState::kTracking;
-    cv::Rect2f box;  // box reported this frame
-    int failures = 0;
-    int age = 0;
-    KcfResult result;
+    Status status;
+    KcfResult result;  // the filter's answer this frame
     Motion motion;
-    PeakMeans peaks;
+    References refs;
     FilterGate gate;
     Verification verification;
-    // A challenger (search()): tracked but not reported until it replaces an unverified track.
-    bool probation = false;
-    float contrast_ref = 0.0f;  // TargetContrast of the box the filter (re)started on
   };
 
   struct Candidate {

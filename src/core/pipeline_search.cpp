@@ -14,27 +14,26 @@ using namespace pipeline_detail;  // NOLINT(build/namespaces): the pipeline's ow
 
 bool Pipeline::Impl::overlapsTrack(const cv::Rect2f& b, float max_iou) const {
   for (const auto& t : tracks) {
-    if (t->state == TrackState::kLost) continue;
-    if (boxIou(b, t->box) > max_iou || t->box.contains(boxCentre(b)) || b.contains(boxCentre(t->box))) return true;
+    if (t->status.state == TrackState::kLost) continue;
+    if (boxIou(b, t->status.box) > max_iou || t->status.box.contains(boxCentre(b)) || b.contains(boxCentre(t->status.box))) return true;
   }
   return false;
 }
 
 int Pipeline::Impl::activeTracks() const {
   int n = 0;
-  for (const auto& t : tracks) n += t->state != TrackState::kLost && !t->probation ? 1 : 0;
+  for (const auto& t : tracks) n += t->status.state != TrackState::kLost && !t->status.probation ? 1 : 0;
   return n;
 }
 
 void Pipeline::Impl::mergeTracks() {
   for (std::size_t i = 0; i < tracks.size(); ++i) {
     for (std::size_t j = i + 1; j < tracks.size();) {
-      Track& a = *tracks[i];
-      Track& b = *tracks[j];
-      if (a.state != TrackState::kLost && b.state != TrackState::kLost &&
-          boxIou(a.box, b.box) > params.merge_iou) {
+      const Track::Status& a = tracks[i]->status;
+      const Track::Status& b = tracks[j]->status;
+      if (a.state != TrackState::kLost && b.state != TrackState::kLost && boxIou(a.box, b.box) > params.merge_iou) {
         // Keep the one in the better state, then the older one.
-        const bool keep_a = a.probation != b.probation          ? b.probation
+        const bool keep_a = a.probation != b.probation                     ? b.probation
                             : stateRank(a.state) != stateRank(b.state) ? stateRank(a.state) < stateRank(b.state)
                                                                        : a.age >= b.age;
         const std::size_t drop = keep_a ? j : i;
@@ -70,17 +69,17 @@ void Pipeline::Impl::mergeTracks() {
 // to a mover). While a track is unverified the AutoInitializer costs what it costs while
 // searching (and allocates as it does: the feature tracks of background_motion.h).
 void Pipeline::Impl::verify(Track& t) {
-  if (t.verification.verified || t.state == TrackState::kLost) return;
+  if (t.verification.verified || t.status.state == TrackState::kLost) return;
   if (params.auto_init_verify_frames <= 0 || params.auto_init_min_motion <= 0.0) {
     t.verification.verified = true;  // switched off since the track started
     return;
   }
   ++t.verification.watched;
   // On the camera's on-screen display: never an obstacle, however it seems to move.
-  if (autoinit.overlayShare(t.box) >= AutoInitializer::kOverlayShare) return;
+  if (autoinit.overlayShare(t.status.box) >= AutoInitializer::kOverlayShare) return;
   const cv::Point2d bg_d = autoinit.backgroundMotion() - t.verification.start_background;
   const cv::Point2f bg(static_cast<float>(bg_d.x), static_cast<float>(bg_d.y));
-  const cv::Point2f in_image = boxCentre(t.box) - t.verification.start_centre;
+  const cv::Point2f in_image = boxCentre(t.status.box) - t.verification.start_centre;
   const float image_motion = std::hypot(in_image.x, in_image.y);
   const float bg_motion = std::hypot(bg.x, bg.y);
   const float own_motion = std::hypot(in_image.x - bg.x, in_image.y - bg.y);
@@ -95,8 +94,8 @@ void Pipeline::Impl::verify(Track& t) {
   // at least a little in the image with pixels that change: an overlay is pixel-locked.
   const bool moved = own_motion >= need &&
                      (image_motion >= need || (t.verification.max_image_motion >= kVerifyMinImageMotion &&
-                                               autoinit.stillShare(t.box) < kVerifyStillShare));
-  const float growth = 0.5f * std::log(std::max(1.0f, t.box.area())) - t.verification.start_log_size;
+                                               autoinit.stillShare(t.status.box) < kVerifyStillShare));
+  const float growth = 0.5f * std::log(std::max(1.0f, t.status.box.area())) - t.verification.start_log_size;
   const bool grew = params.auto_init_min_growth > 0.0 && growth >= static_cast<float>(params.auto_init_min_growth);
   if (moved || grew) t.verification.verified = true;
 }
@@ -105,7 +104,7 @@ void Pipeline::Impl::verify(Track& t) {
 Pipeline::Impl::Track* Pipeline::Impl::replaceableTrack() {
   Track* best = nullptr;
   for (auto& t : tracks) {
-    if (t->verification.verified || t->probation || t->state == TrackState::kLost ||
+    if (t->verification.verified || t->status.probation || t->status.state == TrackState::kLost ||
         t->verification.watched < params.auto_init_verify_frames) {
       continue;
     }
@@ -116,14 +115,14 @@ Pipeline::Impl::Track* Pipeline::Impl::replaceableTrack() {
 
 bool Pipeline::Impl::anyUnverified() const {
   for (const auto& t : tracks) {
-    if (!t->verification.verified && !t->probation && t->state != TrackState::kLost) return true;
+    if (!t->verification.verified && !t->status.probation && t->status.state != TrackState::kLost) return true;
   }
   return false;
 }
 
 Pipeline::Impl::Track* Pipeline::Impl::challenger() {
   for (auto& t : tracks) {
-    if (t->probation) return t.get();
+    if (t->status.probation) return t.get();
   }
   return nullptr;
 }
@@ -143,19 +142,19 @@ void Pipeline::Impl::removeTrack(const Track* victim) {
 void Pipeline::Impl::settleChallenge() {
   Track* c = challenger();
   if (c == nullptr) return;
-  if (c->state == TrackState::kLost || (!c->verification.verified && c->verification.watched > 2 * params.auto_init_verify_frames)) {
+  if (c->status.state == TrackState::kLost || (!c->verification.verified && c->verification.watched > 2 * params.auto_init_verify_frames)) {
     removeTrack(c);
     return;
   }
   if (activeTracks() < params.max_obstacles) {
-    c->probation = false;  // the slot became free
+    c->status.probation = false;  // the slot became free
     return;
   }
   if (!c->verification.verified) return;
   if (Track* stale = replaceableTrack()) {
     removeTrack(stale);
     c = challenger();
-    c->probation = false;
+    c->status.probation = false;
   }
 }
 
@@ -179,7 +178,7 @@ void Pipeline::Impl::search(const cv::Mat& frame, double stamp) {
     if (activeTracks() < params.max_obstacles) {
       newAutoTrack(frame, stamp, r.box);
     } else if (anyUnverified() && challenger() == nullptr) {
-      newAutoTrack(frame, stamp, r.box).probation = true;
+      newAutoTrack(frame, stamp, r.box).status.probation = true;
     }
   }
 }

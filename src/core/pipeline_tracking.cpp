@@ -24,11 +24,11 @@ void Pipeline::Impl::acceptGood(Track& t, const cv::Rect2f& box, double stamp) {
       t.motion.have_velocity = true;
     }
   }
-  t.box = box;
+  t.status.box = box;
   t.motion.good_box = box;
   t.motion.good_stamp = stamp;
-  t.state = TrackState::kTracking;
-  t.failures = 0;
+  t.status.state = TrackState::kTracking;
+  t.status.failures = 0;
 }
 
 cv::Rect2f Pipeline::Impl::predict(const Track& t, double stamp) const {
@@ -65,7 +65,7 @@ bool Pipeline::Impl::redetect(Track& t, const cv::Mat& frame, double stamp) {
 void Pipeline::Impl::gatherCandidates(const Track& t, const cv::Mat& frame, const cv::Rect2f& pred) {
   // The window grows while the re-detection fails (the object keeps moving) and never gets
   // too small for a tiny target (a few-pixel drone moves farther than its size per frame).
-  const float grow = std::min(kMaxWindowGrowth, 1.0f + kWindowGrowthPerFailure * static_cast<float>(t.failures));
+  const float grow = std::min(kMaxWindowGrowth, 1.0f + kWindowGrowthPerFailure * static_cast<float>(t.status.failures));
   const cv::Size2f search_size(std::max(kMinSearchBoxSide, pred.width * grow),
                                std::max(kMinSearchBoxSide, pred.height * grow));
   const cv::Rect2f search_box = boxCentredAt(boxCentre(pred), search_size);
@@ -128,7 +128,7 @@ int Pipeline::Impl::chooseCandidate(Track& t, const cv::Mat& frame, KcfResult& c
   // its own), is accepted on a weaker verification (redetect_solo_peak x peak_threshold) once
   // the ordinary verification has failed on an earlier frame. It bypasses the relative test
   // that keeps occluders and birds out, so it is a parameter (0 switches it off).
-  if (best < 0 && params.redetect_solo_peak > 0.0 && t.failures > 0 && verify > 0 &&
+  if (best < 0 && params.redetect_solo_peak > 0.0 && t.status.failures > 0 && verify > 0 &&
       candidates[0].prior >= kSoloPrior &&
       (candidates.size() < 2 || candidates[1].prior < kSoloMargin * candidates[0].prior) &&
       first_result.peak >= static_cast<float>(params.redetect_solo_peak * params.peak_threshold)) {
@@ -164,7 +164,7 @@ bool Pipeline::Impl::restartOn(Track& t, const cv::Mat& frame, double stamp, con
   }
   if (!usableBox(box, frame_size)) return false;
   t.kcf.init(frame, box);
-  t.contrast_ref = contrast.measure(frame, box);
+  t.refs.contrast = contrast.measure(frame, box);
   t.looming.restart(frame, stamp, box);
   t.result = verified_result;
   t.result.box = box;
@@ -178,7 +178,7 @@ bool Pipeline::Impl::restartOn(Track& t, const cv::Mat& frame, double stamp, con
 // context is not taken for the target).
 float Pipeline::Impl::goodPeak(const Track& t) const {
   float th = static_cast<float>(params.peak_threshold);
-  if (t.peaks.ref_count >= kRefWarmup) th = std::max(th, static_cast<float>(params.relative_peak_threshold) * t.peaks.ref_peak);
+  if (t.refs.count >= kRefWarmup) th = std::max(th, static_cast<float>(params.relative_peak_threshold) * t.refs.peak);
   return th;
 }
 
@@ -186,8 +186,8 @@ float Pipeline::Impl::goodPeak(const Track& t) const {
 // again on its own): the tracking test, and redetect_relative_threshold x the running mean.
 float Pipeline::Impl::acceptPeak(const Track& t) const {
   float accept = goodPeak(t);
-  if (t.peaks.ref_count >= kRefWarmup) {
-    accept = std::max(accept, static_cast<float>(params.redetect_relative_threshold) * t.peaks.ref_peak);
+  if (t.refs.count >= kRefWarmup) {
+    accept = std::max(accept, static_cast<float>(params.redetect_relative_threshold) * t.refs.peak);
   }
   return accept;
 }
@@ -199,9 +199,9 @@ float Pipeline::Impl::acceptPeak(const Track& t) const {
 // searches around its last position.
 void Pipeline::Impl::configureFilter(Track& t, bool learn) {
   float gate = static_cast<float>(params.learn_threshold);
-  if (t.peaks.ref_count >= kRefWarmup && params.learn_relative_threshold > 0.0) {
+  if (t.refs.count >= kRefWarmup && params.learn_relative_threshold > 0.0) {
     const float k = static_cast<float>(params.learn_relative_threshold);
-    gate = std::max(gate, std::min(kMaxLearnGate, KcfTracker::confidenceFrom(k * t.peaks.ref_peak, k * t.peaks.ref_psr)));
+    gate = std::max(gate, std::min(kMaxLearnGate, KcfTracker::confidenceFrom(k * t.refs.peak, k * t.refs.psr)));
   }
   if (std::abs(gate - t.gate.learn_gate) > 1e-3f || learn != t.gate.learning) {
     TrackerParams p = params;  // the filter's group only
@@ -214,15 +214,15 @@ void Pipeline::Impl::configureFilter(Track& t, bool learn) {
 }
 
 void Pipeline::Impl::updateRefs(Track& t, const KcfResult& r) {
-  if (t.peaks.ref_count == 0) {
-    t.peaks.ref_peak = r.peak;
-    t.peaks.ref_psr = r.psr;
+  if (t.refs.count == 0) {
+    t.refs.peak = r.peak;
+    t.refs.psr = r.psr;
   } else {
-    const float a = t.peaks.ref_count < kRefWarmup ? 1.0f / static_cast<float>(t.peaks.ref_count + 1) : kRefSmoothing;
-    t.peaks.ref_peak += a * (r.peak - t.peaks.ref_peak);
-    t.peaks.ref_psr += a * (r.psr - t.peaks.ref_psr);
+    const float a = t.refs.count < kRefWarmup ? 1.0f / static_cast<float>(t.refs.count + 1) : kRefSmoothing;
+    t.refs.peak += a * (r.peak - t.refs.peak);
+    t.refs.psr += a * (r.psr - t.refs.psr);
   }
-  ++t.peaks.ref_count;
+  ++t.refs.count;
 }
 
 float Pipeline::Impl::inFrameFraction(const cv::Rect2f& b) const {
@@ -241,7 +241,7 @@ float Pipeline::Impl::inFrameFraction(const cv::Rect2f& b) const {
 // hence the comparison. At the usual frame rate nothing is evaluated or moved.
 void Pipeline::Impl::bridgeDroppedFrames(Track& t, const cv::Mat& frame) {
   const double missed = frame_interval.dropped();
-  if (!(missed > 0.0) || !t.motion.have_velocity || t.state != TrackState::kTracking) return;
+  if (!(missed > 0.0) || !t.motion.have_velocity || t.status.state != TrackState::kTracking) return;
   cv::Point2f shift = t.motion.velocity * static_cast<float>(missed);
   const cv::Rect2f box = t.kcf.box();
   const float cap = kMaxPredictionBoxes * std::max(box.width, box.height);
@@ -255,40 +255,40 @@ void Pipeline::Impl::bridgeDroppedFrames(Track& t, const cv::Mat& frame) {
 }
 
 void Pipeline::Impl::step(Track& t, const cv::Mat& frame, double stamp) {
-  ++t.age;
+  ++t.status.age;
   bridgeDroppedFrames(t, frame);
   // The filter first, in both states (re-detecting: without learning).
-  configureFilter(t, t.state == TrackState::kTracking);
+  configureFilter(t, t.status.state == TrackState::kTracking);
   t.kcf.setSizeTrend(t.looming.sizeTrend());
   const KcfResult r = t.kcf.update(frame);
   t.result = r;
   // A box mostly outside the frame is an obstacle leaving the view: the filter's answer there
   // correlates mostly padding and background, so it does not count as tracking.
-  const float needed = t.state == TrackState::kTracking ? goodPeak(t) : acceptPeak(t);
+  const float needed = t.status.state == TrackState::kTracking ? goodPeak(t) : acceptPeak(t);
   if (r.peak >= needed && usableBox(r.box, frame_size) && inFrameFraction(r.box) >= kMinInFrame) {
     updateRefs(t, r);
     t.looming.track(frame, stamp, r.box);
     acceptGood(t, r.box, stamp);
     // A peak on a box that no longer holds the contrasted object it started on is the filter
     // following the background (target_contrast.h): reported as no better than re-detecting.
-    if (t.contrast_ref >= TargetContrast::kMinReference &&
-        TargetContrast::lost(t.contrast_ref, contrast.measure(frame, r.box))) {
+    if (t.refs.contrast >= TargetContrast::kMinReference &&
+        TargetContrast::lost(t.refs.contrast, contrast.measure(frame, r.box))) {
       t.result.confidence = std::min(t.result.confidence, static_cast<float>(params.learn_threshold));
     }
     return;
   }
-  t.state = TrackState::kRedetecting;
+  t.status.state = TrackState::kRedetecting;
   // Salient regions around the prediction (also on the frame where the peak fell).
   if (redetect(t, frame, stamp)) return;
-  ++t.failures;
-  t.box = predict(t, stamp);
+  ++t.status.failures;
+  t.status.box = predict(t, stamp);
   t.result.confidence = std::min(t.result.confidence, static_cast<float>(params.learn_threshold));
   t.result.model_updated = false;
-  if (t.failures > params.max_redetect_failures) {
-    t.state = TrackState::kLost;
+  if (t.status.failures > params.max_redetect_failures) {
+    t.status.state = TrackState::kLost;
     t.result.confidence = 0.0f;
   } else {
-    t.state = TrackState::kRedetecting;
+    t.status.state = TrackState::kRedetecting;
   }
 }
 
