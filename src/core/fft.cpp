@@ -44,6 +44,95 @@ std::vector<int> radices(int n) {
   return r;
 }
 
+// The butterflies of ComplexFft::butterfly, one per radix: `p` transforms of length m (at
+// out + q m) into one of length p m, with tw[j fstride] = e^(-+2 pi i j / (p m)).
+void butterfly2(ComplexF* out, int fstride, int m, const std::vector<ComplexF>& tw) {
+  for (int u = 0; u < m; ++u) {
+    const ComplexF t = mul(out[u + m], tw[static_cast<std::size_t>(u * fstride)]);
+    out[u + m] = sub(out[u], t);
+    out[u] = add(out[u], t);
+  }
+}
+
+void butterfly4(ComplexF* out, int fstride, int m, const std::vector<ComplexF>& tw) {
+  // -i (forward) or +i (inverse) is the quarter turn tw[fstride m].
+  const bool forward = tw[static_cast<std::size_t>(fstride * m)].im < 0.0f;
+  for (int u = 0; u < m; ++u) {
+    const ComplexF a0 = out[u];
+    const ComplexF a1 = mul(out[u + m], tw[static_cast<std::size_t>(u * fstride)]);
+    const ComplexF a2 = mul(out[u + 2 * m], tw[static_cast<std::size_t>(2 * u * fstride)]);
+    const ComplexF a3 = mul(out[u + 3 * m], tw[static_cast<std::size_t>(3 * u * fstride)]);
+    const ComplexF s02 = add(a0, a2), d02 = sub(a0, a2);
+    const ComplexF s13 = add(a1, a3), d13 = sub(a1, a3);
+    // d13 times the quarter turn: -i d13 = (d13.im, -d13.re) forward, +i d13 inverse.
+    const ComplexF rot = forward ? ComplexF{d13.im, -d13.re} : ComplexF{-d13.im, d13.re};
+    out[u] = add(s02, s13);
+    out[u + m] = add(d02, rot);
+    out[u + 2 * m] = sub(s02, s13);
+    out[u + 3 * m] = sub(d02, rot);
+  }
+}
+
+void butterfly3(ComplexF* out, int fstride, int m, const std::vector<ComplexF>& tw) {
+  // w = tw[fstride m] = e^(-+2 pi i / 3) = (-1/2, -+sqrt(3)/2).
+  const float h = tw[static_cast<std::size_t>(fstride * m)].im;
+  for (int u = 0; u < m; ++u) {
+    const ComplexF a0 = out[u];
+    const ComplexF a1 = mul(out[u + m], tw[static_cast<std::size_t>(u * fstride)]);
+    const ComplexF a2 = mul(out[u + 2 * m], tw[static_cast<std::size_t>(2 * u * fstride)]);
+    const ComplexF s = add(a1, a2), d = sub(a1, a2);
+    const ComplexF mid = {a0.re - 0.5f * s.re, a0.im - 0.5f * s.im};
+    const ComplexF rot = {-h * d.im, h * d.re};  // i h d
+    out[u] = add(a0, s);
+    out[u + m] = add(mid, rot);
+    out[u + 2 * m] = sub(mid, rot);
+  }
+}
+
+void butterfly5(ComplexF* out, int fstride, int m, const std::vector<ComplexF>& tw) {
+  // w = tw[fstride m] = e^(-+2 pi i / 5), w^2; w^3 and w^4 are their conjugates, so the sums
+  // pair a1 with a4 and a2 with a3.
+  const ComplexF w1 = tw[static_cast<std::size_t>(fstride * m)];
+  const ComplexF w2 = tw[static_cast<std::size_t>(2 * fstride * m)];
+  for (int u = 0; u < m; ++u) {
+    const ComplexF a0 = out[u];
+    const ComplexF a1 = mul(out[u + m], tw[static_cast<std::size_t>(u * fstride)]);
+    const ComplexF a2 = mul(out[u + 2 * m], tw[static_cast<std::size_t>(2 * u * fstride)]);
+    const ComplexF a3 = mul(out[u + 3 * m], tw[static_cast<std::size_t>(3 * u * fstride)]);
+    const ComplexF a4 = mul(out[u + 4 * m], tw[static_cast<std::size_t>(4 * u * fstride)]);
+    const ComplexF s14 = add(a1, a4), d14 = sub(a1, a4);
+    const ComplexF s23 = add(a2, a3), d23 = sub(a2, a3);
+    const ComplexF r1 = {a0.re + s14.re * w1.re + s23.re * w2.re, a0.im + s14.im * w1.re + s23.im * w2.re};
+    const ComplexF i1 = {d14.im * w1.im + d23.im * w2.im, -(d14.re * w1.im) - d23.re * w2.im};
+    const ComplexF r2 = {a0.re + s14.re * w2.re + s23.re * w1.re, a0.im + s14.im * w2.re + s23.im * w1.re};
+    const ComplexF i2 = {d23.im * w1.im - d14.im * w2.im, d14.re * w2.im - d23.re * w1.im};
+    out[u] = add(a0, add(s14, s23));
+    out[u + m] = sub(r1, i1);
+    out[u + 2 * m] = add(r2, i2);
+    out[u + 3 * m] = sub(r2, i2);
+    out[u + 4 * m] = add(r1, i1);
+  }
+}
+
+// Any other radix: the direct sum over the p inputs (p is a prime above 5 here); x holds p values.
+void butterflyDirect(ComplexF* out, int fstride, int m, int p, const std::vector<ComplexF>& tw, ComplexF* x) {
+  const long n = static_cast<long>(p) * m * fstride;
+  for (int u = 0; u < m; ++u) {
+    for (int q = 0; q < p; ++q) x[q] = out[u + q * m];
+    for (int q1 = 0; q1 < p; ++q1) {
+      const long k = u + static_cast<long>(q1) * m;
+      ComplexF acc = x[0];
+      long index = 0;
+      for (int q = 1; q < p; ++q) {
+        index += fstride * k;
+        if (index >= n) index -= n;
+        acc = add(acc, mul(x[q], tw[static_cast<std::size_t>(index)]));
+      }
+      out[k] = acc;
+    }
+  }
+}
+
 }  // namespace
 
 ComplexF unitRootTurn(long k, long n) {
@@ -117,90 +206,12 @@ void ComplexFft::run(const ComplexF* in, int in_stride, ComplexF* out, const std
 // Combines `radix` transforms of length `span` (at out + q span) into one of length radix span.
 // tw[j fstride] = e^(-+2 pi i j / (radix span)).
 void ComplexFft::butterfly(ComplexF* out, int fstride, int m, int p, const std::vector<ComplexF>& tw) const {
-  if (p == 2) {
-    for (int u = 0; u < m; ++u) {
-      const ComplexF t = mul(out[u + m], tw[static_cast<std::size_t>(u * fstride)]);
-      out[u + m] = sub(out[u], t);
-      out[u] = add(out[u], t);
-    }
-    return;
-  }
-  if (p == 4) {
-    // -i (forward) or +i (inverse) is the quarter turn tw[fstride m].
-    const bool forward = tw[static_cast<std::size_t>(fstride * m)].im < 0.0f;
-    for (int u = 0; u < m; ++u) {
-      const ComplexF a0 = out[u];
-      const ComplexF a1 = mul(out[u + m], tw[static_cast<std::size_t>(u * fstride)]);
-      const ComplexF a2 = mul(out[u + 2 * m], tw[static_cast<std::size_t>(2 * u * fstride)]);
-      const ComplexF a3 = mul(out[u + 3 * m], tw[static_cast<std::size_t>(3 * u * fstride)]);
-      const ComplexF s02 = add(a0, a2), d02 = sub(a0, a2);
-      const ComplexF s13 = add(a1, a3), d13 = sub(a1, a3);
-      // d13 times the quarter turn: -i d13 = (d13.im, -d13.re) forward, +i d13 inverse.
-      const ComplexF rot = forward ? ComplexF{d13.im, -d13.re} : ComplexF{-d13.im, d13.re};
-      out[u] = add(s02, s13);
-      out[u + m] = add(d02, rot);
-      out[u + 2 * m] = sub(s02, s13);
-      out[u + 3 * m] = sub(d02, rot);
-    }
-    return;
-  }
-  if (p == 3) {
-    // w = tw[fstride m] = e^(-+2 pi i / 3) = (-1/2, -+sqrt(3)/2).
-    const float h = tw[static_cast<std::size_t>(fstride * m)].im;
-    for (int u = 0; u < m; ++u) {
-      const ComplexF a0 = out[u];
-      const ComplexF a1 = mul(out[u + m], tw[static_cast<std::size_t>(u * fstride)]);
-      const ComplexF a2 = mul(out[u + 2 * m], tw[static_cast<std::size_t>(2 * u * fstride)]);
-      const ComplexF s = add(a1, a2), d = sub(a1, a2);
-      const ComplexF mid = {a0.re - 0.5f * s.re, a0.im - 0.5f * s.im};
-      const ComplexF rot = {-h * d.im, h * d.re};  // i h d
-      out[u] = add(a0, s);
-      out[u + m] = add(mid, rot);
-      out[u + 2 * m] = sub(mid, rot);
-    }
-    return;
-  }
-  if (p == 5) {
-    // w = tw[fstride m] = e^(-+2 pi i / 5), w^2; w^3 and w^4 are their conjugates, so the sums
-    // pair a1 with a4 and a2 with a3.
-    const ComplexF w1 = tw[static_cast<std::size_t>(fstride * m)];
-    const ComplexF w2 = tw[static_cast<std::size_t>(2 * fstride * m)];
-    for (int u = 0; u < m; ++u) {
-      const ComplexF a0 = out[u];
-      const ComplexF a1 = mul(out[u + m], tw[static_cast<std::size_t>(u * fstride)]);
-      const ComplexF a2 = mul(out[u + 2 * m], tw[static_cast<std::size_t>(2 * u * fstride)]);
-      const ComplexF a3 = mul(out[u + 3 * m], tw[static_cast<std::size_t>(3 * u * fstride)]);
-      const ComplexF a4 = mul(out[u + 4 * m], tw[static_cast<std::size_t>(4 * u * fstride)]);
-      const ComplexF s14 = add(a1, a4), d14 = sub(a1, a4);
-      const ComplexF s23 = add(a2, a3), d23 = sub(a2, a3);
-      const ComplexF r1 = {a0.re + s14.re * w1.re + s23.re * w2.re, a0.im + s14.im * w1.re + s23.im * w2.re};
-      const ComplexF i1 = {d14.im * w1.im + d23.im * w2.im, -(d14.re * w1.im) - d23.re * w2.im};
-      const ComplexF r2 = {a0.re + s14.re * w2.re + s23.re * w1.re, a0.im + s14.im * w2.re + s23.im * w1.re};
-      const ComplexF i2 = {d23.im * w1.im - d14.im * w2.im, d14.re * w2.im - d23.re * w1.im};
-      out[u] = add(a0, add(s14, s23));
-      out[u + m] = sub(r1, i1);
-      out[u + 2 * m] = add(r2, i2);
-      out[u + 3 * m] = sub(r2, i2);
-      out[u + 4 * m] = add(r1, i1);
-    }
-    return;
-  }
-  // Any other radix: the direct sum over the p inputs (p is a prime above 5 here).
-  const long n = static_cast<long>(p) * m * fstride;
-  ComplexF* x = scratch_.data();
-  for (int u = 0; u < m; ++u) {
-    for (int q = 0; q < p; ++q) x[q] = out[u + q * m];
-    for (int q1 = 0; q1 < p; ++q1) {
-      const long k = u + static_cast<long>(q1) * m;
-      ComplexF acc = x[0];
-      long index = 0;
-      for (int q = 1; q < p; ++q) {
-        index += fstride * k;
-        if (index >= n) index -= n;
-        acc = add(acc, mul(x[q], tw[static_cast<std::size_t>(index)]));
-      }
-      out[k] = acc;
-    }
+  switch (p) {
+    case 2: return butterfly2(out, fstride, m, tw);
+    case 3: return butterfly3(out, fstride, m, tw);
+    case 4: return butterfly4(out, fstride, m, tw);
+    case 5: return butterfly5(out, fstride, m, tw);
+    default: return butterflyDirect(out, fstride, m, p, tw, scratch_.data());
   }
 }
 
