@@ -39,7 +39,11 @@ void writeOtbSequence(SceneGenerator& gen, const std::string& dir, const WriteOp
 
 // Writes the video (".mp4": mp4v, ".avi": MJPG) and, next to it, STEM_groundtruth_rect.txt,
 // STEM_groundtruth_multi.csv and STEM_scene.yaml. Mono16 scenes are mapped to 8 bits with
-// SceneGenerator::thermalDisplayRange. Throws std::runtime_error when the writer fails.
+// SceneGenerator::thermalDisplayRange, the fixed band scene.yaml states, so that a video's values
+// stay one known linear function of the counts. This is not the trackers' 16-bit rule
+// (core::IntensityStretch): that one estimates the band of a camera's unknown counts from every
+// frame, and the tools apply it when they read the 16-bit PNG frames of writeOtbSequence.
+// Throws std::runtime_error when the writer fails.
 void writeVideo(SceneGenerator& gen, const std::string& path, const WriteOptions& options = WriteOptions());
 
 }  // namespace scene
