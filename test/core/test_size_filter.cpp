@@ -191,7 +191,9 @@ TEST(SizeFilter, TrackStartingCloseToContact) {
     const double t = k / kFps;
     f.predict(t);
     f.updateExpansion(approachExpansion(s0, T, t), 0.005);
-    if (k >= 5) EXPECT_NEAR(f.timeToContact(), T - t, 0.2 * (T - t)) << "frame " << k;
+    if (k >= 5) {
+      EXPECT_NEAR(f.timeToContact(), T - t, 0.2 * (T - t)) << "frame " << k;
+    }
   }
 }
 
@@ -203,7 +205,9 @@ TEST(SizeFilter, OutlierExpansionIsDropped) {
   for (int k = 1; k <= 60; ++k) {
     f.predict(k / kFps);
     f.updateExpansion(k == 40 ? -0.10 : 0.01, 0.005);
-    if (k == 39 || k == 40) EXPECT_GT(f.expansionRate(), 0.2) << k;
+    if (k == 39 || k == 40) {
+      EXPECT_GT(f.expansionRate(), 0.2) << k;
+    }
   }
   EXPECT_NEAR(f.expansionRate(), 0.3, 0.05);
 }
