@@ -10,6 +10,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "auto_init_impl.h"
+#include "obstacle_tracker/core/box_geometry.h"
 #include "obstacle_tracker/core/frame_check.h"
 
 namespace obstacle_tracker {
@@ -117,7 +118,7 @@ SalientRegion AutoInitializer::Impl::toRegion(const cv::Rect& box, int area, dou
 // when the best region there contains the candidate's centre.
 void AutoInitializer::Impl::refine(const cv::Mat& frame, SalientRegion& region) {
   const auto& found = refiner.detectInWindow(frame, region.box);
-  const cv::Point2f c(region.box.x + 0.5f * region.box.width, region.box.y + 0.5f * region.box.height);
+  const cv::Point2f c = boxCentre(region.box);
   const float max_area = kRefineMaxGrowth * std::max(16.0f, region.box.area());
   for (const SalientRegion& r : found) {
     if (!r.box.contains(c) || r.box.area() > max_area) continue;

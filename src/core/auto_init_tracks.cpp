@@ -9,6 +9,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "auto_init_impl.h"
+#include "obstacle_tracker/core/box_geometry.h"
 
 namespace obstacle_tracker {
 namespace core {
@@ -79,7 +80,7 @@ bool AutoInitializer::Impl::changedAgainstBackground(const cv::Rect& box) const 
   const cv::Mat& now = past[static_cast<size_t>(frame_index % (kLag + 1))];
   const cv::Mat& then = past[static_cast<size_t>((frame_index - kLag) % (kLag + 1))];
   // Where the background at the box's centre was kLag frames ago, as a shift.
-  const cv::Point2f centre(box.x + 0.5f * box.width, box.y + 0.5f * box.height);
+  const cv::Point2f centre = boxCentre(cv::Rect2f(box));
   const cv::Matx33d then_to_now =
       first_to_image * past_image_to_first[static_cast<size_t>((frame_index - kLag) % (kLag + 1))];
   const cv::Point2d shift = cv::Point2d(centre) - cv::Point2d(apply(then_to_now.inv(), centre));

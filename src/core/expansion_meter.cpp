@@ -40,7 +40,7 @@ void ExpansionMeter::setReference(const cv::Mat& frame, const cv::Rect2f& box) {
   // The aligner reads one pixel around the region (gradients, bilinear steps).
   region_ = cv::Rect(cvRound(c - 0.5f * rw), cvRound(c - 0.5f * rh), cvRound(rw), cvRound(rh)) &
             cv::Rect(2, 2, kPatchSide - 4, kPatchSide - 4);
-  const cv::Point2f centre(box.x + 0.5f * box.width, box.y + 0.5f * box.height);
+  const cv::Point2f centre = boxCentre(box);
   if (frame.data == measured_frame && centre == measured_centre_ && window_ == measured_window_) {
     // The box did not change size since measure(): its patch of this frame is the reference.
     cv::swap(reference_grey_, current_grey_);

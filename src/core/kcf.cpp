@@ -19,6 +19,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "kcf_impl.h"
+#include "obstacle_tracker/core/box_geometry.h"
 #include "obstacle_tracker/core/frame_check.h"
 
 namespace obstacle_tracker {
@@ -230,7 +231,7 @@ KcfResult KcfTracker::evaluate(const cv::Mat& frame, const cv::Rect2f& candidate
   Impl& m = *impl_;
   const float s = std::sqrt(candidate.area() / m.target.area());
   const cv::Size2f ws(m.window.width * s, m.window.height * s);
-  const cv::Point2f c(candidate.x + candidate.width * 0.5f, candidate.y + candidate.height * 0.5f);
+  const cv::Point2f c = boxCentre(candidate);
   cv::Mat& r = m.resp[0];
   m.respond(frame, c, ws, r);
   double mx;

@@ -9,6 +9,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "kcf_impl.h"
+#include "obstacle_tracker/core/box_geometry.h"
 #include "obstacle_tracker/core/portable_math.h"
 
 namespace obstacle_tracker {
@@ -101,7 +102,7 @@ void KcfTracker::Impl::buildGeometry(const cv::Mat& frame, const cv::Rect2f& box
   rows = ww >= wh ? short_cells : long_cells;
   tw = cols * cell;
   th = rows * cell;
-  center = cv::Point2f(box.x + box.width * 0.5f, box.y + box.height * 0.5f);
+  center = boxCentre(box);
   target = box.size();
   window = cv::Size2f(ww, wh);
   min_target = cv::Size2f(std::min(box.width, kMinTargetSide), std::min(box.height, kMinTargetSide));
@@ -265,7 +266,7 @@ float KcfTracker::Impl::applyScale(float f) {
 }
 
 cv::Rect2f KcfTracker::Impl::boxAt(cv::Point2f c, cv::Size2f s) const {
-  return cv::Rect2f(c.x - s.width * 0.5f, c.y - s.height * 0.5f, s.width, s.height);
+  return boxCentredAt(c, s);
 }
 
 }  // namespace core

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "obstacle_tracker/core/box_geometry.h"
+
 namespace obstacle_tracker {
 namespace core {
 
@@ -27,8 +29,8 @@ void PatchSampler::sample(const cv::Mat& frame, cv::Point2f c, cv::Size2f ws, in
   if (static_cast<int>(col_a_.size()) < tw) reserve(tw, th, frame.type(), frame.cols);
   const double fx = ws.width / tw;
   const double fy = ws.height / th;
-  const double x0 = c.x - ws.width * 0.5;
-  const double y0 = c.y - ws.height * 0.5;
+  const cv::Point2d origin = boxCentredAt(cv::Point2d(c), cv::Size2d(ws)).tl();
+  const double x0 = origin.x, y0 = origin.y;
   int qx = std::max(1, static_cast<int>(std::floor(fx)));
   int qy = std::max(1, static_cast<int>(std::floor(fy)));
   // Source image and its coordinate map: source pixel j has its centre at frame x = ox + (j +

@@ -24,6 +24,7 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "obstacle_tracker/core/box_geometry.h"
 #include "obstacle_tracker/core/frame_check.h"
 #include "obstacle_tracker/core/mbd.h"
 #include "obstacle_tracker/core/segmentation.h"
@@ -273,7 +274,8 @@ cv::Rect SaliencyDetector::searchWindow(const cv::Size& frame_size, const cv::Re
   if ((box & frame_rect).area() <= 0.0f) return cv::Rect();
   const float s = static_cast<float>(std::max(1.0, scale));
   const float w = std::max(kMinSide, box.width * s), h = std::max(kMinSide, box.height * s);
-  const float cx = box.x + 0.5f * box.width, cy = box.y + 0.5f * box.height;
+  const cv::Point2f c = boxCentre(box);
+  const float cx = c.x, cy = c.y;
   const int x0 = static_cast<int>(std::floor(cx - 0.5f * w)), y0 = static_cast<int>(std::floor(cy - 0.5f * h));
   const int x1 = static_cast<int>(std::ceil(cx + 0.5f * w)), y1 = static_cast<int>(std::ceil(cy + 0.5f * h));
   return cv::Rect(cv::Point(x0, y0), cv::Point(x1, y1)) & cv::Rect(0, 0, frame_size.width, frame_size.height);

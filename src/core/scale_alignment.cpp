@@ -7,6 +7,7 @@
 
 #include <Eigen/Dense>
 
+#include "obstacle_tracker/core/box_geometry.h"
 #include "obstacle_tracker/core/image_pyramid.h"
 
 namespace obstacle_tracker {
@@ -78,7 +79,8 @@ ScaleEstimate ScaleAlignment::estimate(const cv::Mat& reference, const cv::Mat& 
 // into the current patch; the inverse compositional step (Baker & Matthews eq. 31-35) linearises
 // at the reference, whose steepest-descent images are [grad I . (x - c), I_x, I_y].
 bool ScaleAlignment::alignLevel(const Level& lv, const cv::Rect2f& r, double& a, cv::Point2d& t, double& var_ls) {
-  const double cx = r.x + 0.5 * r.width, cy = r.y + 0.5 * r.height;
+  const cv::Point2d c = boxCentre(cv::Rect2d(r));
+  const double cx = c.x, cy = c.y;
   const int xa = static_cast<int>(std::ceil(r.x)), xb = static_cast<int>(std::floor(r.x + r.width));
   const int ya = static_cast<int>(std::ceil(r.y)), yb = static_cast<int>(std::floor(r.y + r.height));
   double sigma_r = 0.0;  // robust residual scale of the previous iteration (0: none yet)

@@ -9,13 +9,16 @@
 #include <stdexcept>
 #include <string>
 
+#include "obstacle_tracker/core/box_geometry.h"
+
 namespace obstacle_tracker {
 namespace eval {
 
 double centreError(const cv::Rect2f& a, const cv::Rect2f& b) {
   if (isAbsent(a) || isAbsent(b)) return std::numeric_limits<double>::infinity();
-  const double dx = (double(a.x) + 0.5 * a.width) - (double(b.x) + 0.5 * b.width);
-  const double dy = (double(a.y) + 0.5 * a.height) - (double(b.y) + 0.5 * b.height);
+  const cv::Point2d ca = core::boxCentre(cv::Rect2d(a)), cb = core::boxCentre(cv::Rect2d(b));
+  const double dx = ca.x - cb.x;
+  const double dy = ca.y - cb.y;
   return std::sqrt(dx * dx + dy * dy);
 }
 

@@ -8,6 +8,8 @@
 
 #include <sensor_msgs/distortion_models.h>
 
+#include "obstacle_tracker/core/box_geometry.h"
+
 namespace obstacle_tracker {
 namespace bridge {
 
@@ -118,7 +120,8 @@ cv::Vec3d CameraGeometry::ray(double u, double v) const {
 
 BoxGeometry CameraGeometry::box(const cv::Rect2f& b) const {
   BoxGeometry g;
-  const double cx = b.x + 0.5 * b.width, cy = b.y + 0.5 * b.height;
+  const cv::Point2d c = core::boxCentre(cv::Rect2d(b));
+  const double cx = c.x, cy = c.y;
   g.bearing = ray(cx, cy);
   auto angle = [](const cv::Vec3d& a, const cv::Vec3d& c) {
     // atan2 of |a x c| and a.c: accurate for small angles, unlike acos.

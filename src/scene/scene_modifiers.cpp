@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "obstacle_tracker/core/box_geometry.h"
 #include "scene_generator_impl.h"
 
 namespace obstacle_tracker {
@@ -54,7 +55,7 @@ cv::Rect2f SceneGenerator::Impl::mainBoundsAt(double t) const {
 void SceneGenerator::Impl::addGlare(SceneryLayout& layout) {
   const double Wd = W, Hd = H;
   const cv::Rect2f b = mainBoundsAt(0.5 * duration);
-  layout.sun = cv::Point2d(b.x + b.width * 0.5 + 0.12 * Wd + 0.5 * b.width, b.y - 0.08 * Hd);
+  layout.sun = cv::Point2d(core::boxCentre(cv::Rect2d(b)).x + 0.12 * Wd + 0.5 * b.width, b.y - 0.08 * Hd);
   bg.glare = 0.9f;
 }
 
@@ -64,7 +65,8 @@ void SceneGenerator::Impl::addFlock() {
   const double t_mid = 0.5 * D;
   Rng rf(hashCombine(cfg.seed, 4));
   const cv::Rect2f b = mainBoundsAt(t_mid);
-  const cv::Point2d c_mid(b.x + 0.5 * b.width + rf.uniform(-0.05, 0.05) * Wd, b.y + 0.5 * b.height + rf.uniform(-0.08, 0.08) * Hd);
+  const cv::Point2d b_centre = core::boxCentre(cv::Rect2d(b));
+  const cv::Point2d c_mid(b_centre.x + rf.uniform(-0.05, 0.05) * Wd, b_centre.y + rf.uniform(-0.08, 0.08) * Hd);
   const double vx = (rf.chance(0.5) ? 1.0 : -1.0) * 1.2 * Wd / D;
   const double vy = rf.uniform(-0.15, 0.15) * Hd / D;
   const int n = rf.uniformInt(12, 22);
@@ -94,8 +96,8 @@ void SceneGenerator::Impl::addOcclusion() {
   Rng ro(hashCombine(cfg.seed, 5));
   const cv::Rect2f b = mainBoundsAt(t_mid);
   const cv::Rect2f b2 = mainBoundsAt(t_mid + 0.05);
-  const cv::Point2d c_t(b.x + 0.5 * b.width, b.y + 0.5 * b.height);
-  const cv::Point2d v_t = (cv::Point2d(b2.x + 0.5 * b2.width, b2.y + 0.5 * b2.height) - c_t) * (1.0 / 0.05);
+  const cv::Point2d c_t = core::boxCentre(cv::Rect2d(b));
+  const cv::Point2d v_t = (core::boxCentre(cv::Rect2d(b2)) - c_t) * (1.0 / 0.05);
   const double min_rel = 0.45 * Wd / D;
   Occluder oc;
   oc.t_mid = t_mid;

@@ -57,8 +57,6 @@ inline cv::Mat renderFrame(const cv::Mat& bg, const cv::Mat& obj, cv::Size frame
   return frame;
 }
 
-inline cv::Point2f centre(const cv::Rect2f& b) { return {b.x + b.width * 0.5f, b.y + b.height * 0.5f}; }
-
 // The whole frame is one textured pattern translated by a known sub-pixel amount (bilinear
 // warp of a smooth texture, so the shifted frame is the exact translate up to rounding to 8 bit).
 inline cv::Mat shiftedPattern(const cv::Mat& tex, cv::Size fs, double dx, double dy, int type) {

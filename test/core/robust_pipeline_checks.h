@@ -17,6 +17,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "obstacle_tracker/core/box_geometry.h"
 #include "obstacle_tracker/core/pipeline.h"
 
 namespace obstacle_tracker {
@@ -89,8 +90,7 @@ inline void expectStillWorks(oc::Pipeline& pipeline, double stamp, const std::st
     const auto& obstacles = pipeline.process(squareFrame(size, CV_8UC1, square), stamp + i / 30.0);
     expectValid(obstacles, size, what);
     ASSERT_FALSE(obstacles.empty()) << what << ": lost a clean moving square at frame " << i;
-    const cv::Point2f c(obstacles[0].box.x + obstacles[0].box.width / 2,
-                        obstacles[0].box.y + obstacles[0].box.height / 2);
+    const cv::Point2f c = oc::boxCentre(obstacles[0].box);
     EXPECT_NEAR(c.x, square.x + 10, 4.0) << what;
     EXPECT_NEAR(c.y, square.y + 10, 4.0) << what;
   }

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "obstacle_tracker/core/collision_course.h"
+#include "obstacle_tracker/core/box_geometry.h"
 #include "obstacle_tracker/core/pipeline.h"
 #include "obstacle_tracker/scene/scene_generator.h"
 
@@ -123,8 +124,8 @@ int flaggedFrames(const char* name, int seed, int* checked) {
       CollisionCourse::Track t;
       t.id = o.id;
       t.has_bearing = true;
-      const double u = o.box.x + 0.5 * o.box.width, v = o.box.y + 0.5 * o.box.height;
-      t.bearing = cv::Vec3d((u - 0.5 * frame.cols) / f, (v - 0.5 * frame.rows) / f, 1.0);
+      const cv::Point2d uv = core::boxCentre(cv::Rect2d(o.box));
+      t.bearing = cv::Vec3d((uv.x - 0.5 * frame.cols) / f, (uv.y - 0.5 * frame.rows) / f, 1.0);
       t.expansion_rate = o.expansion_rate;
       t.expansion_rate_sigma = o.expansion_rate_sigma;
       tracks.push_back(t);

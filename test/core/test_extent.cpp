@@ -12,6 +12,7 @@
 
 #include "alloc_counter.h"
 #include "noisy_frame.h"
+#include "obstacle_tracker/core/box_geometry.h"
 #include "obstacle_tracker/core/segmentation.h"
 
 namespace core = obstacle_tracker::core;
@@ -53,8 +54,8 @@ TEST(ExtentGrower, BlurredBlobGrowsToItsVisibleExtent) {
     SCOPED_TRACE(s);
     EXPECT_NEAR(grown.width, expected, 1.5);
     EXPECT_NEAR(grown.height, expected, 1.5);
-    EXPECT_NEAR(grown.x + 0.5f * grown.width, c.x, 0.75);
-    EXPECT_NEAR(grown.y + 0.5f * grown.height, c.y, 0.75);
+    EXPECT_NEAR(core::boxCentre(grown).x, c.x, 0.75);
+    EXPECT_NEAR(core::boxCentre(grown).y, c.y, 0.75);
     EXPECT_GT(grown.area(), 2.0f * core_box.area());
     // The grown box always contains the core.
     EXPECT_EQ((grown & core_box).area(), core_box.area());

@@ -10,10 +10,11 @@
 #include <opencv2/imgproc.hpp>
 
 #include "kcf_test_frames.h"
+#include "obstacle_tracker/core/box_geometry.h"
 #include "obstacle_tracker/core/kcf.h"
 
 namespace oc = obstacle_tracker::core;
-using obstacle_tracker::test::centre;
+using obstacle_tracker::core::boxCentre;
 using obstacle_tracker::test::makeTexture;
 using obstacle_tracker::test::renderFrame;
 using obstacle_tracker::test::shiftedPattern;
@@ -37,7 +38,7 @@ TEST_P(KcfSubPixel, KnownShiftsAreFoundWithinAQuarterPixel) {
       kcf.init(first, cv::Rect2f(static_cast<float>(cx - side / 2), static_cast<float>(cy - side / 2),
                                  static_cast<float>(side), static_cast<float>(side)));
       const oc::KcfResult r = kcf.update(shiftedPattern(tex, fs, d.x, d.y, type));
-      const cv::Point2f c = centre(r.box);
+      const cv::Point2f c = boxCentre(r.box);
       const double err = std::hypot(c.x - (cx + d.x), c.y - (cy + d.y));
       worst = std::max(worst, err);
       EXPECT_LT(err, 0.25) << "box side " << side << " shift " << d << " found "
@@ -84,7 +85,7 @@ TEST_P(KcfScale, FollowsAGrowingPatternWithin5PercentScale) {
   }
   const double est = std::sqrt(r.box.area()) / side0;
   EXPECT_NEAR(est, side / side0, 0.05 * side / side0) << "estimated scale " << est;
-  EXPECT_LT(cv::norm(centre(r.box) - cv::Point2f(static_cast<float>(x), 120.0f)), 2.0);
+  EXPECT_LT(cv::norm(boxCentre(r.box) - cv::Point2f(static_cast<float>(x), 120.0f)), 2.0);
   // And shrinking back to 1.0 over 10 frames, then 3 frames at that size (the scale filter's
   // model trails a fast shrink by a few frames).
   for (int i = 1; i <= 13; ++i) {
@@ -178,8 +179,8 @@ TEST(Kcf, EvaluateDoesNotChangeStateAndRanksCandidates) {
   EXPECT_GT(on_target.peak, 0.6);
   EXPECT_GT(on_target.confidence, 0.6);
   EXPECT_LT(off_target.confidence, 0.3);
-  EXPECT_NEAR(centre(on_target.box).x, 100.0, 0.5);
-  EXPECT_NEAR(centre(on_target.box).y, 100.0, 0.5);
+  EXPECT_NEAR(boxCentre(on_target.box).x, 100.0, 0.5);
+  EXPECT_NEAR(boxCentre(on_target.box).y, 100.0, 0.5);
   EXPECT_FALSE(on_target.model_updated);
   // a evaluated twice, b never: their next updates are identical.
   const cv::Mat next = renderFrame(bg, obj, fs, 103, 98, 30, CV_8UC3);
@@ -205,12 +206,12 @@ TEST(Kcf, ShiftedSearchFindsATargetBeyondTheWindow) {
   shifted.shiftSearch(cv::Point2f(std::nanf(""), 0.0f));  // ignored
   EXPECT_EQ(shifted.box(), plain.box());
   shifted.shiftSearch(cv::Point2f(56.0f, 3.0f));  // a prediction a few pixels off
-  EXPECT_NEAR(centre(shifted.box()).x, 156.0, 1e-3);
+  EXPECT_NEAR(boxCentre(shifted.box()).x, 156.0, 1e-3);
   const oc::KcfResult rp = plain.update(f1);
   const oc::KcfResult rs = shifted.update(f1);
-  EXPECT_GT(std::abs(centre(rp.box).x - 160.0), 10.0) << "the jump should be beyond the unshifted search";
-  EXPECT_NEAR(centre(rs.box).x, 160.0, 1.0);
-  EXPECT_NEAR(centre(rs.box).y, 120.0, 1.0);
+  EXPECT_GT(std::abs(boxCentre(rp.box).x - 160.0), 10.0) << "the jump should be beyond the unshifted search";
+  EXPECT_NEAR(boxCentre(rs.box).x, 160.0, 1.0);
+  EXPECT_NEAR(boxCentre(rs.box).y, 120.0, 1.0);
   EXPECT_GT(rs.confidence, 0.6);
   EXPECT_GT(rs.peak, rp.peak);
 }

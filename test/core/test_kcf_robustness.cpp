@@ -12,10 +12,11 @@
 #include <opencv2/imgproc.hpp>
 
 #include "kcf_test_frames.h"
+#include "obstacle_tracker/core/box_geometry.h"
 #include "obstacle_tracker/core/kcf.h"
 
 namespace oc = obstacle_tracker::core;
-using obstacle_tracker::test::centre;
+using obstacle_tracker::core::boxCentre;
 using obstacle_tracker::test::makeTexture;
 using obstacle_tracker::test::renderFrame;
 
@@ -34,15 +35,15 @@ TEST(Kcf, TinyTargetsAndBoxesPartlyOutsideTheFrame) {
   for (int i = 1; i <= 10; ++i) {
     r = kcf.update(renderFrame(bg, obj, fs, 100 + i, 100, 6, CV_8UC1));
   }
-  EXPECT_NEAR(centre(r.box).x, 110.0, 1.0);
-  EXPECT_NEAR(centre(r.box).y, 100.0, 1.0);
+  EXPECT_NEAR(boxCentre(r.box).x, 110.0, 1.0);
+  EXPECT_NEAR(boxCentre(r.box).y, 100.0, 1.0);
   // A box hanging over the top-left corner: no crash, box stays finite and near the target.
   const cv::Mat corner = renderFrame(bg, makeTexture(64, 11), fs, 10, 8, 40, CV_8UC3);
   kcf.init(corner, cv::Rect2f(-10, -12, 40, 40));
   r = kcf.update(renderFrame(bg, makeTexture(64, 11), fs, 12, 9, 40, CV_8UC3));
   EXPECT_TRUE(std::isfinite(r.box.x) && std::isfinite(r.box.y));
-  EXPECT_NEAR(centre(r.box).x, 12.0, 2.0);
-  EXPECT_NEAR(centre(r.box).y, 9.0, 2.0);
+  EXPECT_NEAR(boxCentre(r.box).x, 12.0, 2.0);
+  EXPECT_NEAR(boxCentre(r.box).y, 9.0, 2.0);
   // A very thin, large box (aspect 8:1) and a box larger than the frame.
   kcf.init(corner, cv::Rect2f(0, 100, 300, 30));
   EXPECT_NO_THROW(kcf.update(corner));

@@ -14,12 +14,14 @@
 
 #include "obstacle_tracker/core/box_geometry.h"
 #include "obstacle_tracker/core/pipeline.h"
+#include "obstacle_tracker/eval/metrics.h"
 
 using obstacle_tracker::core::boxIou;
 using obstacle_tracker::core::Obstacle;
 using obstacle_tracker::core::Params;
 using obstacle_tracker::core::Pipeline;
 using obstacle_tracker::core::TrackState;
+using obstacle_tracker::eval::centreError;
 
 namespace {
 
@@ -69,10 +71,6 @@ const Obstacle* findId(const std::vector<Obstacle>& obs, int id) {
     if (o.id == id) return &o;
   }
   return nullptr;
-}
-
-float centreError(const cv::Rect2f& a, const cv::Rect2f& b) {
-  return std::hypot(a.x + a.width / 2 - b.x - b.width / 2, a.y + a.height / 2 - b.y - b.height / 2);
 }
 
 }  // namespace

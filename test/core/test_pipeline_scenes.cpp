@@ -136,10 +136,7 @@ TEST(PipelineScenes, CollisionCourseAutoInit) {
       if (m == nullptr || !m->visible) continue;
       ++visible;
       if (r.frames[i].empty()) continue;
-      const cv::Point2f c(r.frames[i][0].box.x + 0.5f * r.frames[i][0].box.width,
-                          r.frames[i][0].box.y + 0.5f * r.frames[i][0].box.height);
-      const cv::Point2f g(m->box.x + 0.5f * m->box.width, m->box.y + 0.5f * m->box.height);
-      followed += std::hypot(c.x - g.x, c.y - g.y) <= 20.0f ? 1 : 0;
+      followed += eval::centreError(r.frames[i][0].box, m->box) <= 20.0 ? 1 : 0;
     }
     std::printf("[ scene    ] %-8s auto: first box at frame %d, centre within 20 px on %d of %d\n", name,
                 first, followed, visible);
@@ -194,8 +191,7 @@ TEST(PipelineScenes, UnverifiedStartGivesWayToAMover) {
     if (m == nullptr || !m->visible) continue;
     ++reported;
     const cv::Rect2f& b = with.frames[i].front().box;
-    on_target += std::hypot(b.x + 0.5f * b.width - m->box.x - 0.5f * m->box.width,
-                            b.y + 0.5f * b.height - m->box.y - 0.5f * m->box.height) <= 20.0f;
+    on_target += eval::centreError(b, m->box) <= 20.0;
   }
   std::printf("[ scene    ] the replacing track: on the multirotor on %d of %d frames\n", on_target, reported);
   EXPECT_GT(reported, 0);

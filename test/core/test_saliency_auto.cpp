@@ -13,8 +13,10 @@
 
 #include "obstacle_tracker/core/pipeline.h"
 #include "obstacle_tracker/core/saliency.h"
+#include "obstacle_tracker/eval/metrics.h"
 
 namespace oc = obstacle_tracker::core;
+using obstacle_tracker::eval::centreError;
 
 namespace {
 
@@ -64,10 +66,6 @@ cv::Mat makeSky(cv::RNG& rng) {
   rng.fill(noise, cv::RNG::UNIFORM, 0, 4);
   u8 += noise;
   return u8;
-}
-
-float centreError(const cv::Rect2f& a, const cv::Rect2f& b) {
-  return std::hypot(a.x + a.width / 2 - b.x - b.width / 2, a.y + a.height / 2 - b.y - b.height / 2);
 }
 
 }  // namespace

@@ -19,6 +19,16 @@ inline cv::Rect2f boxCentredAt(const cv::Point2f& c, const cv::Size2f& s) {
   return {c.x - 0.5f * s.width, c.y - 0.5f * s.height, s.width, s.height};
 }
 
+// The same in double, for code whose arithmetic is double (evaluation, camera rays, image
+// alignment): pass cv::Rect2d(box) so each coordinate is widened before the sum and the float
+// rounding of the helpers above does not enter. An integer cv::Rect matches neither overload
+// exactly and does not compile: say which precision is meant.
+inline cv::Point2d boxCentre(const cv::Rect2d& b) { return {b.x + 0.5 * b.width, b.y + 0.5 * b.height}; }
+
+inline cv::Rect2d boxCentredAt(const cv::Point2d& c, const cv::Size2d& s) {
+  return {c.x - 0.5 * s.width, c.y - 0.5 * s.height, s.width, s.height};
+}
+
 // True when a box stands for "no target": a NaN or an infinity anywhere, or a width or height <= 0.
 inline bool boxIsAbsent(const cv::Rect2f& b) {
   // NaN compares false, so "!(w > 0)" also catches a NaN size.
