@@ -12,8 +12,10 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "obstacle_tracker/core/mbd_saliency.h"
 #include "obstacle_tracker/core/params.h"
-#include "obstacle_tracker/core/segmentation.h"
+#include "obstacle_tracker/core/region_extractor.h"
+#include "obstacle_tracker/core/salient_region.h"
 #include "obstacle_tracker/scene/scene_generator.h"
 
 namespace oc = obstacle_tracker::core;

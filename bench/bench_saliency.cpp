@@ -13,8 +13,9 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/saliency.hpp>
 
+#include "obstacle_tracker/core/region_extractor.h"
 #include "obstacle_tracker/core/saliency.h"
-#include "obstacle_tracker/core/segmentation.h"
+#include "obstacle_tracker/core/salient_region.h"
 
 namespace oc = obstacle_tracker::core;
 

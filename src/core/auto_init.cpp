@@ -1,6 +1,6 @@
 // Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
 //
-// Multi-frame auto-initialisation (saliency.h, AutoInitializer): the frame's steps in order,
+// Multi-frame auto-initialisation (auto_init.h, AutoInitializer): the frame's steps in order,
 // background motion and still pixels, and the confirmation of candidate tracks with their refined
 // boxes. Design and cues: auto_init_impl.h.
 #include <algorithm>

@@ -4,7 +4,7 @@
 // confirmation), auto_init_candidates.cpp (candidate map and candidates) and auto_init_tracks.cpp
 // (candidate tracks and their motion and growth cues). Private to the core.
 //
-// Multi-frame auto-initialisation (saliency.h, AutoInitializer). One frame's saliency picks the
+// Multi-frame auto-initialisation (auto_init.h, AutoInitializer). One frame's saliency picks the
 // wrong object on real footage (on-screen text, sunlit ground, parked aircraft outrank the
 // target), so candidates are followed over the first frames and confirmed by cues
 // that one frame cannot give. Per frame, on the grey image:
@@ -48,10 +48,14 @@
 
 #include <opencv2/core.hpp>
 
+#include "obstacle_tracker/core/auto_init.h"
 #include "obstacle_tracker/core/background_motion.h"
+#include "obstacle_tracker/core/extent_grower.h"
+#include "obstacle_tracker/core/mat_arena.h"
+#include "obstacle_tracker/core/mbd_saliency.h"
 #include "obstacle_tracker/core/overlay_mask.h"
 #include "obstacle_tracker/core/saliency.h"
-#include "obstacle_tracker/core/segmentation.h"
+#include "obstacle_tracker/core/salient_region.h"
 
 namespace obstacle_tracker {
 namespace core {

@@ -1,8 +1,10 @@
 // Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
 //
-// MbdSaliency (segmentation.h): the MBD saliency map of an image by FastMBD (mbd.h; Zhang et al.,
+// MbdSaliency (mbd_saliency.h): the MBD saliency map of an image by FastMBD (mbd.h; Zhang et al.,
 // "Minimum Barrier Salient Object Detection at 80 FPS", ICCV 2015) on Lab (colour) or grey
 // (thermal), optionally with MB+'s backgroundness map and its smoothing and contrast stretch.
+#include "obstacle_tracker/core/mbd_saliency.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -10,7 +12,6 @@
 
 #include "obstacle_tracker/core/frame_check.h"
 #include "obstacle_tracker/core/mbd.h"
-#include "obstacle_tracker/core/segmentation.h"
 
 namespace obstacle_tracker {
 namespace core {

@@ -1,7 +1,7 @@
 // Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
 //
 // TargetContrast (target_contrast.h): the object's contrast against robust statistics (median,
-// MAD) of a ring around its box, as ExtentGrower (extent.cpp) measures a core's surroundings.
+// MAD) of a ring around its box, as ExtentGrower (extent_grower.cpp) measures a core's surroundings.
 #include "obstacle_tracker/core/target_contrast.h"
 
 #include <algorithm>

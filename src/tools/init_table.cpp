@@ -31,9 +31,11 @@
 
 #include "command_line.h"
 #include "init_table/variants.h"
+#include "obstacle_tracker/core/auto_init.h"
 #include "obstacle_tracker/core/box_geometry.h"
+#include "obstacle_tracker/core/region_extractor.h"
 #include "obstacle_tracker/core/saliency.h"
-#include "obstacle_tracker/core/segmentation.h"
+#include "obstacle_tracker/core/salient_region.h"
 #include "obstacle_tracker/eval/metrics.h"
 #include "obstacle_tracker/eval/runner.h"
 #include "obstacle_tracker/eval/sequence.h"

@@ -1,6 +1,6 @@
 // Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
 //
-// ExtentGrower (segmentation.h): from a salient region's bright core to the object's visible
+// ExtentGrower (extent_grower.h): from a salient region's bright core to the object's visible
 // extent, with known answers on blurred blobs, and the cases where the core must come back as it
 // is (object joined to the surroundings, no contrast, bad input).
 #include <cmath>
@@ -13,7 +13,7 @@
 #include "alloc_counter.h"
 #include "noisy_frame.h"
 #include "obstacle_tracker/core/box_geometry.h"
-#include "obstacle_tracker/core/segmentation.h"
+#include "obstacle_tracker/core/extent_grower.h"
 
 namespace core = obstacle_tracker::core;
 

@@ -1,6 +1,6 @@
 // Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
 //
-// RegionExtractor's own 8-connected labelling (src/core/saliency.cpp, replaces
+// RegionExtractor's own 8-connected labelling (src/core/region_extractor.cpp, replaces
 // cv::connectedComponents, which allocates its label table on every call): the same components
 // and statistics as cv::connectedComponentsWithStats on maps built to stress the union-find
 // (noise at every density, U shapes and staircases that join late, diagonal-only contacts,
@@ -18,7 +18,8 @@
 #include <opencv2/imgproc.hpp>
 
 #include "obstacle_tracker/core/params.h"
-#include "obstacle_tracker/core/segmentation.h"
+#include "obstacle_tracker/core/region_extractor.h"
+#include "obstacle_tracker/core/salient_region.h"
 
 #include "alloc_counter.h"
 

@@ -11,8 +11,9 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "obstacle_tracker/core/auto_init.h"
 #include "obstacle_tracker/core/pipeline.h"
-#include "obstacle_tracker/core/saliency.h"
+#include "obstacle_tracker/core/salient_region.h"
 #include "obstacle_tracker/eval/metrics.h"
 
 namespace oc = obstacle_tracker::core;

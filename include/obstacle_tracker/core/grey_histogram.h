@@ -1,7 +1,7 @@
 // Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
 //
 // Robust statistics of 8-bit values from a 256-bin histogram (no sort, no allocation): the ring
-// statistics of ExtentGrower (extent.cpp) and TargetContrast (target_contrast.cpp).
+// statistics of ExtentGrower (extent_grower.cpp) and TargetContrast (target_contrast.cpp).
 #pragma once
 
 #include <algorithm>

@@ -11,18 +11,14 @@
 
 #include <opencv2/core.hpp>
 
+// AutoInitializer (auto_init.h) belongs to the same contract; included here so that code written
+// against this header finds it.
+#include "obstacle_tracker/core/auto_init.h"
 #include "obstacle_tracker/core/params.h"
+#include "obstacle_tracker/core/salient_region.h"
 
 namespace obstacle_tracker {
 namespace core {
-
-struct SalientRegion {
-  cv::Rect2f box;               // full-frame pixel coordinates
-  float area = 0.0f;            // region pixels, in full-frame pixels^2
-  float mean_saliency = 0.0f;   // [0, 1]
-  float score = 0.0f;           // ranking score, higher is better (documented in saliency.cpp)
-  bool touches_border = false;  // touches the frame (or window) border
-};
 
 class SaliencyDetector {
  public:
@@ -50,41 +46,6 @@ class SaliencyDetector {
   // full-frame rectangle it covers.
   const cv::Mat& saliencyMap() const;
   cv::Rect mapRegion() const;
-
- private:
-  struct Impl;
-  Impl* impl_;
-};
-
-// Auto-initialisation from several frames (on the dev clips one frame's saliency picks the wrong
-// object on real footage). Feed every frame while searching; returns the candidates confirmed by
-// the multi-frame cues (full-frame coordinates, best first), empty while nothing is confirmed.
-class AutoInitializer {
- public:
-  // A candidate or track with this share of its pixels on the overlay mask is part of the overlay.
-  static constexpr double kOverlayShare = 0.5;
-
-  explicit AutoInitializer(const SaliencyParams& params = SaliencyParams());
-  ~AutoInitializer();
-  AutoInitializer(const AutoInitializer&) = delete;
-  AutoInitializer& operator=(const AutoInitializer&) = delete;
-
-  void setParams(const SaliencyParams& params);
-  void reset();
-  const std::vector<SalientRegion>& update(const cv::Mat& frame, double stamp);
-
-  // Added (not part of the contract): the last frame's raw candidates (best peak first, score =
-  // peak of the candidate map in [0, 1]) and the accumulated background displacement in pixels
-  // (the frame centre's displacement summed over the frames: where the scene content at the
-  // centre has moved to since the first frame), for tools and tests.
-  const std::vector<SalientRegion>& candidates() const;
-  cv::Point2d backgroundMotion() const;
-  // Share of the box's pixels unchanged (within 3 grey levels) for the last 3 frames: an
-  // overlay, or a scene under a still camera. 0 when unknown (auto_init_reject_static off).
-  double stillShare(const cv::Rect2f& box) const;
-  // Share of the box on the overlay mask (overlay_mask.h): pixels locked to the image while the
-  // background moves, the camera's on-screen display. 0 before the camera has moved.
-  double overlayShare(const cv::Rect2f& box) const;
 
  private:
   struct Impl;

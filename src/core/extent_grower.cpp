@@ -1,10 +1,12 @@
 // Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
 //
-// ExtentGrower (segmentation.h): from the bright core that Otsu leaves of a small or blurred
+// ExtentGrower (extent_grower.h): from the bright core that Otsu leaves of a small or blurred
 // object to the object's visible extent, by region growing from the core on the contrast against
 // the local background (robust statistics of the window's outer ring: median background level,
 // MAD noise). The level is relative to the core's own contrast, as the edge of a blurred blob is
 // where its profile has fallen to a small share of its height.
+#include "obstacle_tracker/core/extent_grower.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -12,7 +14,6 @@
 
 #include "obstacle_tracker/core/box_geometry.h"
 #include "obstacle_tracker/core/grey_histogram.h"
-#include "obstacle_tracker/core/segmentation.h"
 
 namespace obstacle_tracker {
 namespace core {
