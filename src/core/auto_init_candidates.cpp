@@ -9,6 +9,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "auto_init_impl.h"
+#include "obstacle_tracker/core/region_growing.h"
 
 namespace obstacle_tracker {
 namespace core {
@@ -173,23 +174,21 @@ void AutoInitializer::Impl::growRegion(const cv::Mat& p, cv::Point seed, Candida
   stamp[static_cast<size_t>(seed.y) * cols + seed.x] = stamp_value;
   int x0 = seed.x, x1 = seed.x, y0 = seed.y, y1 = seed.y;
   double sum = 0.0;
-  for (size_t q = 0; q < queue.size(); ++q) {
-    const int y = queue[q] / cols, x = queue[q] % cols;
+  auto claim = [&](int x, int y) {
+    const size_t k = static_cast<size_t>(y) * cols + x;
+    if (stamp[k] == stamp_value || p.at<uchar>(y, x) < thr) return false;
+    stamp[k] = stamp_value;
+    return true;
+  };
+  auto visit = [&](int x, int y) {
     sum += p.at<uchar>(y, x);
     x0 = std::min(x0, x);
     x1 = std::max(x1, x);
     y0 = std::min(y0, y);
     y1 = std::max(y1, y);
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx) {
-        const int nx = x + dx, ny = y + dy;
-        if (nx < x_lo || nx > x_hi || ny < y_lo || ny > y_hi) continue;
-        const size_t k = static_cast<size_t>(ny) * cols + nx;
-        if (stamp[k] == stamp_value || p.at<uchar>(ny, nx) < thr) continue;
-        stamp[k] = stamp_value;
-        queue.push_back(ny * cols + nx);
-      }
-  }
+    return true;
+  };
+  growRegion8(queue, cols, cv::Rect(cv::Point(x_lo, y_lo), cv::Point(x_hi + 1, y_hi + 1)), claim, visit);
   {
     // Size measure for the growth cue: pixels of P >= kSizeShare x the peak in a window
     // around the grown core (thin parts of a silhouette, e.g. wings, stay under the core's

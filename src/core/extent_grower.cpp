@@ -14,6 +14,7 @@
 
 #include "obstacle_tracker/core/box_geometry.h"
 #include "obstacle_tracker/core/grey_histogram.h"
+#include "obstacle_tracker/core/region_growing.h"
 
 namespace obstacle_tracker {
 namespace core {
@@ -127,23 +128,20 @@ bool ExtentGrower::growRegion(cv::Mat& c, const cv::Rect& core, int threshold, c
   }
   if (queue_.empty()) return false;
   int minx = w, miny = h, maxx = -1, maxy = -1;
-  for (std::size_t i = 0; i < queue_.size(); ++i) {
-    const int x = queue_[i] % w, y = queue_[i] / w;
+  auto claim = [&](int x, int y) {
+    uchar& v = c.ptr<uchar>(y)[x];
+    if (v <= threshold) return false;
+    v = 0;
+    return true;
+  };
+  auto visit = [&](int x, int y) {
     minx = std::min(minx, x);
     maxx = std::max(maxx, x);
     miny = std::min(miny, y);
     maxy = std::max(maxy, y);
-    if (x == 0 || y == 0 || x == w - 1 || y == h - 1) return false;  // joined to the surroundings
-    for (int dy = -1; dy <= 1; ++dy) {
-      uchar* row = c.ptr<uchar>(y + dy);
-      for (int dx = -1; dx <= 1; ++dx) {
-        if (row[x + dx] > threshold) {
-          row[x + dx] = 0;
-          queue_.push_back((y + dy) * w + x + dx);
-        }
-      }
-    }
-  }
+    return x != 0 && y != 0 && x != w - 1 && y != h - 1;  // false: joined to the surroundings
+  };
+  if (!growRegion8(queue_, w, cv::Rect(0, 0, w, h), claim, visit)) return false;
   bounds = cv::Rect(cv::Point(minx, miny), cv::Point(maxx + 1, maxy + 1));
   return true;
 }
