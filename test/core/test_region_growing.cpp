@@ -66,11 +66,8 @@ TEST(RegionGrowing, BreadthFirstInRowOrderOfTheNeighbours) {
 }
 
 TEST(RegionGrowing, TheClipBoundsTheRegion) {
-  const cv::Mat image = image5x5({0, 0, 0, 0, 0,  //
-                                  0, 0, 0, 0, 0,  //
-                                  9, 9, 9, 9, 9,  //
-                                  0, 0, 0, 0, 0,  //
-                                  0, 0, 0, 0, 0});
+  cv::Mat image(5, 5, CV_8U, cv::Scalar(0));
+  image.row(2).setTo(9);  // a line across the middle row
   EXPECT_EQ(grow(image, {{2, 2}}, 5, cv::Rect(1, 0, 3, 5)), (std::vector<int>{12, 11, 13}));
   EXPECT_EQ(grow(image, {{2, 2}}, 5, cv::Rect(0, 0, 5, 5)), (std::vector<int>{12, 11, 13, 10, 14}));
 }
