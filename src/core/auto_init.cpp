@@ -25,7 +25,6 @@ void AutoInitializer::Impl::reset() {
   background = cv::Point2d(0.0, 0.0);
   first_to_image = image_to_first = cv::Matx33d::eye();
   frame_index = 0;
-  horizon = -1;
   tracks.clear();
   confirmed.clear();
   raw.clear();
@@ -42,23 +41,6 @@ void AutoInitializer::Impl::globalMotion(const cv::Mat& grey) {
     const cv::Matx23d& a = e.previous_to_current;
     first_to_image = cv::Matx33d(a(0, 0), a(0, 1), a(0, 2), a(1, 0), a(1, 1), a(1, 2), 0, 0, 1) * first_to_image;
     image_to_first = first_to_image.inv();
-  }
-  if (params.auto_init_horizon_prior) {
-    // Row means of the shrunk frame; the horizon is the strongest step (over 4 rows) in the
-    // middle 80 %, if it is at least 12 grey levels.
-    const cv::Mat& small = motion.currentWorkingFrame();
-    const double rows_per_row = static_cast<double>(grey.rows) / small.rows;
-    horizon = -1;
-    float best = 12.0f;
-    const int rows = small.rows;
-    for (int r = std::max(2, rows / 10); r < rows - std::max(2, rows / 10); ++r) {
-      const float a = static_cast<float>(cv::mean(small.rowRange(r - 2, r))[0]);
-      const float b = static_cast<float>(cv::mean(small.rowRange(r, r + 2))[0]);
-      if (std::abs(a - b) > best) {
-        best = std::abs(a - b);
-        horizon = static_cast<int>(r * rows_per_row);
-      }
-    }
   }
 }
 
@@ -134,14 +116,10 @@ void AutoInitializer::Impl::confirm(const cv::Mat& frame) {
   raw.clear();
   for (const Candidate& c : candidates) raw.push_back(toRegion(c.box, c.area, c.mean, c.peak / 255.0, c.touches_border));
   for (const Track& t : tracks) {
-    // Soft sky prior: below the horizon a track must persist twice as long.
-    const bool below = params.auto_init_horizon_prior && horizon >= 0 && t.centre.y > horizon;
-    const int need = below ? 2 * params.auto_init_frames : params.auto_init_frames;
-    if (t.last_frame != frame_index || t.hits < need) continue;
+    if (t.last_frame != frame_index || t.hits < params.auto_init_frames) continue;
     const int age = frame_index - t.first_frame + 1;
     const double seen = static_cast<double>(t.hits) / age;
     if (params.auto_init_frames > 1 && seen < 0.6) continue;
-    if (params.auto_init_shape_filter && isLine(t.box)) continue;
 
     double score = t.sum_peak / (255.0 * t.hits) * seen;
     if (params.auto_init_min_motion > 0.0) {
@@ -163,7 +141,6 @@ void AutoInitializer::Impl::confirm(const cv::Mat& frame) {
         score *= std::min(1.0, growth / (3.0 * params.auto_init_min_growth));
       }
     }
-    if (below) score *= 0.5;
     SalientRegion region = toRegion(t.box, t.area, t.last_mean, score, t.touches_border);
     refine(frame, region);
     confirmed.push_back(region);

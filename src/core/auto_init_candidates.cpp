@@ -90,7 +90,6 @@ void AutoInitializer::Impl::findCandidates(const cv::Mat& p) {
     if (keepCandidate(c, cols, max_area)) candidates[kept++] = c;
   }
   candidates.resize(kept);
-  if (params.auto_init_reject_text) rejectTextRows();
   // Best peaks first (ties: larger mean), at most auto_init_candidates.
   // Still candidates after the others, so that they never take a moving one's place.
   std::stable_sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
@@ -235,32 +234,6 @@ bool AutoInitializer::Impl::keepCandidate(Candidate& c, int cols, double max_are
     if (c.still && (params.auto_init_min_growth <= 0.0 || params.auto_init_min_motion <= 0.0)) return false;
   }
   return true;
-}
-
-// Text of an on-screen display: rows of >= 3 components of similar height, side by side.
-// A candidate with two or more such neighbours (centre rows within 40 % of its height, heights
-// within a factor 1.6, horizontal gap under 4 heights) is dropped.
-void AutoInitializer::Impl::rejectTextRows() {
-  text_flag.assign(candidates.size(), 0);
-  for (size_t i = 0; i < candidates.size(); ++i) {
-    const Candidate& a = candidates[i];
-    const float h = static_cast<float>(std::max(3, a.box.height));
-    int neighbours = 0;
-    for (size_t j = 0; j < candidates.size(); ++j) {
-      if (i == j) continue;
-      const Candidate& b = candidates[j];
-      const float hb = static_cast<float>(std::max(3, b.box.height));
-      if (std::abs(a.centre.y - b.centre.y) > 0.4f * h) continue;
-      if (hb > 1.6f * h || h > 1.6f * hb) continue;
-      if (std::abs(a.centre.x - b.centre.x) > 4.0f * h + 0.5f * (a.box.width + b.box.width)) continue;
-      ++neighbours;
-    }
-    text_flag[i] = neighbours >= 2;
-  }
-  size_t kept = 0;
-  for (size_t i = 0; i < candidates.size(); ++i)
-    if (!text_flag[i]) candidates[kept++] = candidates[i];
-  candidates.resize(kept);
 }
 
 }  // namespace core

@@ -32,9 +32,7 @@
 //      ln sqrt(pixels) over its history: an obstacle on a collision course keeps its bearing and
 //      only grows. Still candidates (pixels unchanged for 3 frames) are kept for this cue only;
 //   5. score of a confirmed track: mean peak of P x seen share x min(1, motion / (3 x
-//      auto_init_min_motion)) (or growth / (3 x auto_init_min_growth)); with
-//      auto_init_horizon_prior, a track below the horizon (the
-//      strongest row-mean step of the shrunk frame) needs twice the frames and scores x 0.5;
+//      auto_init_min_motion)) (or growth / (3 x auto_init_min_growth));
 //   6. the box of a confirmed track is refined by the saliency detector (FastMBD + Otsu) in a
 //      window of 4 x the box (at least 32 px) at native resolution, when its best region
 //      contains the track's centre, then grown to the object's visible extent (ExtentGrower,
@@ -72,7 +70,6 @@ constexpr float kStillShare = 0.85f;
 constexpr float kGrowShare = 0.3f;
 constexpr double kRefineWindowScale = 4.0;  // window around a confirmed candidate for its box
 constexpr float kRefineMaxGrowth = 16.0f;   // a refined box may cover at most 16 x the candidate's
-constexpr float kMaxAspect = 4.5f;      // candidate boxes more elongated are lines
 constexpr double kMinLinearity = 0.5;   // share of position variance a steady motion explains
 constexpr float kSizeShare = 0.1f;      // growth cue: object pixels are P >= this x the peak
 constexpr int kMinGrowthSamples = 12;  // history points before growth can confirm a track
@@ -144,11 +141,9 @@ struct AutoInitializer::Impl {
   cv::Matx33d first_to_image = cv::Matx33d::eye(), image_to_first = cv::Matx33d::eye();
   cv::Size size;
   int frame_index = 0;
-  int horizon = -1;
   std::vector<int> stamp, queue;
   int stamp_value = 0;
   std::vector<float> cell_max;
-  std::vector<uchar> text_flag;
   cv::Mat prev_grey, still, diff;  // persistent: previous grey frame, per-pixel still count
   std::array<cv::Mat, kLag + 1> past;          // grey frames t, t-1, ..., t-kLag (ring)
   std::array<cv::Matx33d, kLag + 1> past_image_to_first;
@@ -180,14 +175,12 @@ struct AutoInitializer::Impl {
   void cellPeaks(const cv::Mat& p);
   void growRegion(const cv::Mat& p, cv::Point seed, Candidate& c);
   bool keepCandidate(Candidate& c, int cols, double max_area);
-  void rejectTextRows();
 
   // auto_init_tracks.cpp
   void associate();
   bool changedAgainstBackground(const cv::Rect& box) const;
   int contrastAround(cv::Point2f c) const;
   bool vacated(const Track& t) const;
-  static bool isLine(const cv::Rect& b);
   static double motionOf(const Track& t, double* linearity = nullptr);
   static double growthOf(const Track& t, double* fit);
 };

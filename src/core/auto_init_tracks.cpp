@@ -131,12 +131,6 @@ bool AutoInitializer::Impl::vacated(const Track& t) const {
   return now < kVacated * t.contrast[oldest];
 }
 
-// Thin lines (reticles, poles, road markings): aspect above kMaxAspect.
-bool AutoInitializer::Impl::isLine(const cv::Rect& b) {
-  const float w = static_cast<float>(std::max(1, b.width)), h = static_cast<float>(std::max(1, b.height));
-  return std::max(w / h, h / w) > kMaxAspect;
-}
-
 // Displacement of a track over its remembered history, from least-squares lines through its
 // positions against time (so that a region whose box jitters around a fixed point, e.g. a
 // textured structure, does not count as moving): the smaller of the displacement in the image

@@ -26,7 +26,6 @@ constexpr int kRing = 2;             // px: the window's outer ring gives backgr
 constexpr double kNoiseSigmas = 3.0; // object pixels stand this many noise sigmas out
 constexpr int kMinLevel = 2;         // grey levels: the object's contrast is at least this
 constexpr float kMaxGrowth = 4.0f;   // the grown box covers at most this x the core's area
-constexpr double kMadToSigma = 1.4826;
 constexpr double kCorePercentile = 0.9;
 
 bool inRing(int x, int y, int w, int h) { return x < kRing || y < kRing || x >= w - kRing || y >= h - kRing; }

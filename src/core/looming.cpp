@@ -5,14 +5,14 @@
 #include <cmath>
 #include <limits>
 
+#include "obstacle_tracker/core/box_geometry.h"
+
 namespace obstacle_tracker {
 namespace core {
 
 namespace {
 
 double sizeOf(const cv::Rect2f& b) { return std::sqrt(static_cast<double>(b.width) * b.height); }
-
-cv::Point2f centreOf(const cv::Rect2f& b) { return {b.x + 0.5f * b.width, b.y + 0.5f * b.height}; }
 
 }  // namespace
 
@@ -36,7 +36,7 @@ void LoomingEstimator::track(const cv::Mat& frame, double stamp, const cv::Rect2
   }
   filter_.predict(stamp);
   ExpansionMeasurement m;
-  if (use_pixels_) m = meter_.measure(frame, centreOf(box));
+  if (use_pixels_) m = meter_.measure(frame, boxCentre(box));
   recordExpansion(m);
   // The box size stands in for an expansion that was not measured or was dropped as an outlier.
   if (!m.valid || !filter_.updateExpansion(m.log_ratio, m.sigma)) filter_.updateSize(sizeOf(box), kBoxSizeSigma);

@@ -47,13 +47,14 @@
 #include <memory>
 #include <vector>
 
+#include "obstacle_tracker/core/auto_init.h"
 #include "obstacle_tracker/core/box_geometry.h"
+#include "obstacle_tracker/core/extent_grower.h"
 #include "obstacle_tracker/core/frame_interval.h"
 #include "obstacle_tracker/core/kcf.h"
 #include "obstacle_tracker/core/looming.h"
 #include "obstacle_tracker/core/pipeline.h"
 #include "obstacle_tracker/core/saliency.h"
-#include "obstacle_tracker/core/segmentation.h"
 #include "obstacle_tracker/core/target_contrast.h"
 
 namespace obstacle_tracker {

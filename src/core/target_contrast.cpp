@@ -16,7 +16,6 @@ namespace core {
 
 namespace {
 
-constexpr double kMadToSigma = 1.4826;
 constexpr int kMinRingPixels = 16;
 
 // Calls visit(pixel) for the window's pixels outside `inside` on a grid of `step` from the

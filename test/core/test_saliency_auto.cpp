@@ -119,7 +119,6 @@ TEST(AutoInit, WithoutMotionAndOverlayCuesAStaticObjectWins) {
   oc::Params p;
   p.auto_init_min_motion = 0.0;
   p.auto_init_reject_static = false;
-  p.auto_init_reject_text = false;
   int wrong = 0;
   for (int seed = 0; seed < 4; ++seed) {
     cv::RNG rng(100 + seed);

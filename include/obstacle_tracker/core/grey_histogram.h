@@ -12,6 +12,9 @@ namespace core {
 
 using GreyHistogram = std::array<int, 256>;
 
+// Median absolute deviation to the standard deviation of Gaussian noise: 1 / Phi^-1(3/4).
+constexpr double kMadToSigma = 1.4826;
+
 // Smallest level v with more than `share` of the histogram's `count` at or below it.
 inline int histogramQuantile(const GreyHistogram& h, int count, double share) {
   const double target = share * count;

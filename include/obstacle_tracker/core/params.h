@@ -72,17 +72,11 @@ namespace core {
     "or steady growth of ln(size) over the candidate's history (collision course; 0 = cue off)")  \
   X(bool, auto_init_local_contrast, true, false, true, "",                                         \
     "auto-init candidates from native-resolution local contrast x MBD (false: MBD alone)")       \
-  X(bool, auto_init_horizon_prior, false, false, true, "",                                         \
-    "auto-init tracks below the estimated horizon need twice the frames and score half")                       \
   X(int, auto_init_candidates, 24, 1, 64, "", "candidates examined per frame by auto-initialisation") \
-  X(bool, auto_init_reject_text, true, false, true, "",                                            \
-    "drop auto-init candidates in rows of similar components (on-screen text)")                   \
   X(bool, auto_init_reject_static, true, false, true, "",                                          \
     "drop auto-init candidates whose pixels have not changed for 3 frames (overlays)")            \
   X(int, auto_init_verify_frames, 20, 0, 10000, "checks",                                          \
     "checks (one per detection_interval frames) after which an auto-started track not yet moving like an obstacle yields to one that does (0 = off)") \
-  X(bool, auto_init_shape_filter, false, false, true, "",                                          \
-    "drop auto-init tracks whose box is a thin line (aspect > 4.5: reticles, poles, markings)")   \
   X(double, extent_contrast, 0.1, 0.0, 1.0, "",                                                    \
     "a detected box grows over the pixels around it above this share of its core's contrast (0 = off)")
 

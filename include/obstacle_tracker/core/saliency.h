@@ -11,9 +11,6 @@
 
 #include <opencv2/core.hpp>
 
-// AutoInitializer (auto_init.h) belongs to the same contract; included here so that code written
-// against this header finds it.
-#include "obstacle_tracker/core/auto_init.h"
 #include "obstacle_tracker/core/params.h"
 #include "obstacle_tracker/core/salient_region.h"
 

@@ -23,20 +23,9 @@ std::vector<Variant> ablationVariants() {
   oc::Params no_contrast = d;
   no_contrast.auto_init_local_contrast = false;
   variants.push_back({"persistence + motion, MBD alone (no contrast)", no_contrast});
-  oc::Params text = d;
-  text.auto_init_reject_text = !d.auto_init_reject_text;
-  variants.push_back({text.auto_init_reject_text ? "defaults + text-row rejection" : "defaults, no text-row rejection",
-                      text});
   oc::Params no_static = d;
   no_static.auto_init_reject_static = false;
   variants.push_back({"defaults, no still-pixel rejection", no_static});
-  oc::Params shape = d;
-  shape.auto_init_shape_filter = !d.auto_init_shape_filter;
-  variants.push_back({shape.auto_init_shape_filter ? "defaults + line-shape filter" : "defaults, no line-shape filter",
-                      shape});
-  oc::Params horizon = d;
-  horizon.auto_init_horizon_prior = true;
-  variants.push_back({"defaults + horizon prior", horizon});
   oc::Params border = d;
   border.reject_border_regions = false;
   variants.push_back({"defaults, border regions kept", border});
