@@ -114,12 +114,14 @@ void AutoInitializer::Impl::refine(const cv::Mat& frame, SalientRegion& region) 
 void AutoInitializer::Impl::confirm(const cv::Mat& frame) {
   confirmed.clear();
   raw.clear();
-  for (const Candidate& c : candidates) raw.push_back(toRegion(c.box, c.area, c.mean, c.peak / 255.0, c.touches_border));
+  for (const Candidate& c : candidates) {
+    raw.push_back(toRegion(c.box, c.area, c.mean, c.peak / 255.0, c.touches_border));
+  }
   for (const Track& t : tracks) {
     if (t.last_frame != frame_index || t.hits < params.auto_init_frames) continue;
     const int age = frame_index - t.first_frame + 1;
     const double seen = static_cast<double>(t.hits) / age;
-    if (params.auto_init_frames > 1 && seen < 0.6) continue;
+    if (params.auto_init_frames > 1 && seen < kMinSeenShare) continue;
 
     double score = t.sum_peak / (255.0 * t.hits) * seen;
     if (params.auto_init_min_motion > 0.0) {
@@ -132,13 +134,13 @@ void AutoInitializer::Impl::confirm(const cv::Mat& frame) {
       if (!t.still && motion >= needed && linearity >= kMinLinearity && changedAgainstBackground(t.box) &&
           vacated(t)) {
         // Steady motion raises the score up to 3x the threshold.
-        score *= std::min(1.0, motion / (3.0 * params.auto_init_min_motion));
+        score *= std::min(1.0, motion / (kCueSaturation * params.auto_init_min_motion));
       } else {
         // No motion: a collision course shows as steady growth instead.
         double fit = 0.0;
         const double growth = params.auto_init_min_growth > 0.0 ? growthOf(t, &fit) : 0.0;
         if (!(growth >= params.auto_init_min_growth) || fit < kMinGrowthFit) continue;
-        score *= std::min(1.0, growth / (3.0 * params.auto_init_min_growth));
+        score *= std::min(1.0, growth / (kCueSaturation * params.auto_init_min_growth));
       }
     }
     SalientRegion region = toRegion(t.box, t.area, t.last_mean, score, t.touches_border);

@@ -119,7 +119,7 @@ void AutoInitializer::Impl::cellPeaks(const cv::Mat& p) {
     }
   }
   for (float v : cell_max) global_max = std::max(global_max, static_cast<int>(v));
-  const float floor_value = std::max(8.0f, 0.1f * global_max);
+  const float floor_value = std::max(kMinPeakLevel, kMinPeakShare * global_max);
   for (int gy = 0; gy < gh; ++gy)
     for (int gx = 0; gx < gw; ++gx) {
       const float v = cell_max[static_cast<size_t>(gy) * gw + gx];

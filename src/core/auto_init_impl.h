@@ -77,6 +77,13 @@ constexpr double kMinGrowthFit = 0.6;   // share of the log-size variance the gr
 constexpr double kVacated = 0.5;        // motion cue: contrast at the old place now / then
 constexpr int kLag = 4;                 // frames back for the appearance-change test
 constexpr double kMinChange = 0.5;      // appearance change / local contrast of a moving target
+constexpr float kMinPeakLevel = 8.0f;   // candidate peaks: at least this grey level of P ...
+constexpr float kMinPeakShare = 0.1f;   // ... and this share of the frame's strongest cell
+constexpr float kGateMinPx = 8.0f;      // association gate: at least this radius (px) ...
+constexpr float kGateBoxShare = 0.75f;  // ... or this share of the track's longer box side,
+constexpr float kGatePxPerMissed = 2.0f;  // ... plus this per frame the track went unseen
+constexpr double kMinSeenShare = 0.6;   // a track must have been found on this share of its frames
+constexpr double kCueSaturation = 3.0;  // a cue counts in full at this multiple of its threshold
 
 struct Candidate {
   cv::Rect box;

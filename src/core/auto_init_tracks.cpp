@@ -25,7 +25,8 @@ void AutoInitializer::Impl::associate() {
       if (tr.last_frame == frame_index) continue;  // already matched in this frame
       const float gap = static_cast<float>(frame_index - tr.last_frame);
       const cv::Point2f pred = tr.centre + tr.velocity * gap;  // image velocity (camera included)
-      const float gate = std::max(8.0f, 0.75f * std::max(tr.box.width, tr.box.height)) + 2.0f * gap;
+      const float gate =
+          std::max(kGateMinPx, kGateBoxShare * std::max(tr.box.width, tr.box.height)) + kGatePxPerMissed * gap;
       const cv::Point2f d = c.centre - pred;
       const float d2 = d.dot(d);
       if (d2 <= gate * gate && (best < 0 || d2 < best_d2)) {
