@@ -80,7 +80,9 @@ for attempt in $(seq 1 40); do
   # The published frames' sky runs from BGR (170, 100, 40) to (210, 160, 110): all of it within 36
   # of the middle, and nothing else rviz draws is.
   sky=$("$DEVEL/lib/obstacle_tracker/tool_count_colour" "$SHOT" 190 130 75 36 || echo 0)
-  sky_share=$(( 100 * sky / ($(/usr/bin/identify -format '%w*%h' "$SHOT")) ))
+  pixels=$(/usr/bin/identify -format '%w*%h' "$SHOT" 2>/dev/null) || continue
+  [ -n "$pixels" ] || continue  # a screenshot ImageMagick cannot read: take another
+  sky_share=$(( 100 * sky / (pixels) ))
   echo "screenshot $attempt: $green overlay-green pixels, $sky_share % of the screen overlay sky, $cyan bearing-arrow cyan pixels"
   # The drawn box: at least a few dozen pixels of its outline after rviz scales the image; the
   # overlay: the main part of the window; the arrow (5 m long, 5 cm thick, seen from 10 m): at

@@ -1,7 +1,7 @@
 // Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
 //
 // AutoInitializer: the first box without help, from saliency candidates followed over several
-// frames (docs/saliency.md). Part of the pipeline's contract with saliency.h.
+// frames (docs/saliency.md). It reports SalientRegions (salient_region.h) as SaliencyDetector does.
 #pragma once
 
 #include <vector>
