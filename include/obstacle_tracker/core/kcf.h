@@ -3,7 +3,7 @@
 // Kernelized correlation filter (Henriques et al., TPAMI 2015) on fHOG + grey features with a
 // fixed template size, scale estimation and confidence (peak, PSR).
 //
-// INTERFACE CONTRACT (used by the pipeline; keep these members and their meaning, add freely).
+// The pipeline (pipeline_impl.h) relies on the members below and their meaning.
 #pragma once
 
 #include <opencv2/core.hpp>

@@ -3,7 +3,7 @@
 // The closed detection-tracking loop (Bharati et al., T-IV 2018, plus several obstacles and
 // looming): searching -> tracking -> re-detecting -> lost -> searching.
 //
-// INTERFACE CONTRACT (used by the nodelet and the tools; keep these members, add freely).
+// The nodelet and the tools use this class only through the members below.
 #pragma once
 
 #include <vector>

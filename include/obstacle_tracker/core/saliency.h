@@ -4,7 +4,7 @@
 // segmentation and connected salient regions (Bharati et al., T-IV 2018, Algorithm 1), on the
 // whole frame or inside a search window around the last box.
 //
-// INTERFACE CONTRACT (used by the pipeline; keep these members and their meaning, add freely).
+// The pipeline (pipeline_impl.h) relies on the members below and their meaning.
 #pragma once
 
 #include <vector>
