@@ -58,7 +58,7 @@ void Pipeline::Impl::mergeTracks() {
 // background (AutoInitializer::backgroundMotion) by 2 x auto_init_min_motion plus half the
 // background's own displacement, and either as far in the image or (a target the camera keeps
 // in view) a little, with pixels that change; or once it has grown by auto_init_min_growth in
-// ln sqrt(area).
+// ln sqrt(area) while its pixels grow steadily, away from the frame's edge.
 // While a track is unverified the AutoInitializer keeps running, and a candidate it confirms
 // elsewhere becomes a challenger: tracked and verified the same way, but not reported. A
 // challenger that passes replaces a track still unverified after auto_init_verify_frames
@@ -96,7 +96,13 @@ void Pipeline::Impl::verify(Track& t) {
                      (image_motion >= need || (t.verification.max_image_motion >= kVerifyMinImageMotion &&
                                                autoinit.stillShare(t.status.box) < kVerifyStillShare));
   const float growth = 0.5f * std::log(std::max(1.0f, t.status.box.area())) - t.verification.start_log_size;
-  const bool grew = params.auto_init_min_growth > 0.0 && growth >= static_cast<float>(params.auto_init_min_growth);
+  // Growth is evidence only where it measures the object coming closer: while its own pixels
+  // grow steadily (the looming estimator's size trend; the box's net change also holds the
+  // re-sizes of re-detections, which jump), and away from the frame's edge, where the box may
+  // hold only the visible part of a structure that enters the view as the camera turns
+  // (boxNearFrameEdge).
+  const bool grew = params.auto_init_min_growth > 0.0 && growth >= static_cast<float>(params.auto_init_min_growth) &&
+                    t.looming.sizeTrend() > 0 && !boxNearFrameEdge(t.status.box, frame_size);
   if (moved || grew) t.verification.verified = true;
 }
 

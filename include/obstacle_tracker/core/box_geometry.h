@@ -50,6 +50,15 @@ Real boxIou(const cv::Rect2f& a, const cv::Rect2f& b) {
   return uni > Real(0) ? inter / uni : Real(0);
 }
 
+// True when the box is closer to a frame edge than its own size along that axis (its width from
+// the left or right edge, its height from the top or bottom). The visible part of an object there
+// may be cut by the edge, so a change of its size is not a change of the object's: a structure
+// entering the view during a pan "grows" while it does not come closer.
+inline bool boxNearFrameEdge(const cv::Rect2f& b, const cv::Size& frame) {
+  return b.x < b.width || b.y < b.height || static_cast<float>(frame.width) - (b.x + b.width) < b.width ||
+         static_cast<float>(frame.height) - (b.y + b.height) < b.height;
+}
+
 // Finite, and at least a pixel on each side.
 inline bool boxHasPixels(const cv::Rect2f& b) {
   return std::isfinite(b.x) && std::isfinite(b.y) && std::isfinite(b.width) && std::isfinite(b.height) &&
