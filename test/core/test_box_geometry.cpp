@@ -1,6 +1,6 @@
 // Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
 //
-// Known answers of box_geometry.h's tests on boxes that the tracking loop's decisions follow.
+// Known answers of box_geometry.h's boxNearFrameEdge (the verification's growth test follows it).
 #include <gtest/gtest.h>
 
 #include "obstacle_tracker/core/box_geometry.h"

@@ -1,8 +1,8 @@
 // Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
 //
 // Box geometry the core and the evaluation share: centre, a box of a size centred at a point,
-// whether a box stands for "no target", intersection over union, the test a box must pass before
-// its pixels are read, and the pixels around a box.
+// whether a box stands for "no target", intersection over union, whether a box is near the frame's
+// edge, the test a box must pass before its pixels are read, and the pixels around a box.
 #pragma once
 
 #include <algorithm>
