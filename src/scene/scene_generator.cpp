@@ -21,6 +21,7 @@ std::vector<ScenarioDescription> listScenarios() {
   return {
       {"demo", false, "the README demo: a light aircraft approaching (time to contact known) in a sky with clouds above a tree line, mild camera jitter and sensor noise"},
       {"approach", false, "a fixed-wing aircraft on a collision course: size grows as s0*T/(T-t), time to contact T-t known per frame"},
+      {"recede", false, "a fixed-wing aircraft flying away: size falls as s0*T/(T+t) to a sixth over the scene; not closing (time to contact +inf)"},
       {"crossing", false, "a fixed-wing aircraft crossing the view at constant distance; the camera pans slowly after it"},
       {"rotation", false, "a multirotor hovering and drifting with planar rotation (image roll) and out-of-plane rotation (yaw, view elevation, tilt)"},
       {"out_of_view", false, "a multirotor that flies out of the frame on one side, comes back, leaves on the other side and comes back"},

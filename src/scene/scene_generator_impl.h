@@ -160,6 +160,7 @@ struct SceneGenerator::Impl {
   static const BaseScenario& findBaseScenario(const std::string& name);
   void placeCollisionCourse(const ObstaclePlacement& at, Rng& rt, double span_frac, double ratio);
   void placeApproach(const ObstaclePlacement& at, Rng& rt);
+  void placeRecede(const ObstaclePlacement& at, Rng& rt);
   void placeDemo(const ObstaclePlacement& at, Rng& rt);
   void placeCrossing(const ObstaclePlacement& at, Rng& rt);
   void placeRotation(const ObstaclePlacement& at, Rng& rt);

@@ -24,6 +24,7 @@ const SceneGenerator::Impl::BaseScenario& SceneGenerator::Impl::findBaseScenario
   static const BaseScenario kScenarios[] = {
       {"demo", 240, &Impl::placeDemo},
       {"approach", 180, &Impl::placeApproach},
+      {"recede", 180, &Impl::placeRecede},
       {"crossing", 180, &Impl::placeCrossing},
       {"rotation", 180, &Impl::placeRotation},
       {"out_of_view", 240, &Impl::placeOutOfView},
@@ -67,6 +68,35 @@ void SceneGenerator::Impl::placeCollisionCourse(const ObstaclePlacement& at, Rng
     return p;
   });
   tracks.back().ttc0 = T;
+}
+
+// Flying away: the distance grows linearly, so the apparent size falls as s0 T / (T + t) to
+// 1 / `kRecedeRatio` of its start over the scene, and the centre converges on the point the
+// aircraft flies towards. Not closing: time to contact +inf.
+void SceneGenerator::Impl::placeRecede(const ObstaclePlacement& at, Rng& rt) {
+  constexpr double kRecedeRatio = 6.0;
+  const double Wd = at.width, Hd = at.height, D = at.duration;
+  const ObstacleClass c = at.mainClass(ObstacleClass::kFixedWing);
+  const double span0 = std::min(0.3 * Wd * at.size_mult, 0.9 * Wd);
+  const double T = D / (kRecedeRatio - 1.0);
+  const cv::Point2d vanish(Wd * (0.5 + rt.uniform(-0.12, 0.12)), Hd * (0.4 + rt.uniform(-0.06, 0.04)));
+  const double ang = rt.uniform(0.0, 2.0 * kPi);
+  const cv::Point2d off0(detCos(ang) * 0.09 * Wd, detSin(ang) * 0.06 * Hd);
+  const float yaw = static_cast<float>(0.5 * kPi + rt.uniform(-0.45, 0.45));
+  const float elev = static_cast<float>(rt.uniform(-0.18, 0.04));
+  const float bank = static_cast<float>(rt.uniform(-0.12, 0.12));
+  const double fph = rt.uniform(0, 1);
+  addTrack(1, c, [=](double t) {
+    TrackPose p;
+    const double k = T / (T + t);
+    p.pose.centre = cv::Point2f(vanish + off0 * k);
+    p.pose.scale = static_cast<float>(span0 * k);
+    p.pose.yaw = yaw;
+    p.pose.elevation = elev;
+    p.pose.bank = bank;
+    p.pose.flap = flapAt(t, 3.2, fph);
+    return p;
+  });
 }
 
 void SceneGenerator::Impl::placeCrossing(const ObstaclePlacement& at, Rng& rt) {

@@ -56,7 +56,7 @@ std::vector<std::string> modifierNames() {
 
 TEST(SceneGenerator, ListsScenariosAndRejectsBadConfigs) {
   const auto b = baseNames(), m = modifierNames();
-  for (const char* n : {"demo", "approach", "crossing", "rotation", "out_of_view", "multi", "bird", "tiny"})
+  for (const char* n : {"demo", "approach", "recede", "crossing", "rotation", "out_of_view", "multi", "bird", "tiny"})
     EXPECT_NE(std::find(b.begin(), b.end(), n), b.end()) << n;
   for (const char* n : {"jitter", "jerk", "blur", "noise", "illumination", "occlusion", "flock", "overlay", "glare"})
     EXPECT_NE(std::find(m.begin(), m.end(), n), m.end()) << n;
@@ -128,7 +128,7 @@ TEST(SceneGenerator, Mono16IsSixteenBitWithARealisticSignalRange) {
 
 // The ground-truth box of the main obstacle matches the drawn pixels (mask support) within 1 px.
 TEST(SceneGenerator, GroundTruthBoxMatchesTheDrawnMask) {
-  const std::vector<std::string> names = {"demo", "approach", "crossing", "rotation", "out_of_view", "multi", "bird", "tiny",
+  const std::vector<std::string> names = {"demo", "approach", "recede", "crossing", "rotation", "out_of_view", "multi", "bird", "tiny",
                                           "crossing+blur", "approach+jerk", "rotation+large", "crossing+small",
                                           "approach+as_bird", "approach+as_multirotor"};
   int compared = 0;
@@ -241,6 +241,32 @@ TEST(SceneGenerator, ApproachFollowsTheTimeToContactLaw) {
     const os::FrameTruth tl = g.truth(g.frameCount() - 1);
     EXPECT_GT(tl.find(1)->box.width / o0.box.width, 2.0) << name;
   }
+}
+
+// Recede: the distance grows linearly in time, so the apparent size falls as 1 / distance, to a
+// sixth of the start's over the clip; never closing, so the time to contact is +inf.
+TEST(SceneGenerator, RecedeShrinksAsTheDistanceGrows) {
+  auto g = os::makeScenario("recede", 21, 90, cv::Size(320, 240));
+  ASSERT_EQ(g.info().obstacles.size(), 1u);
+  EXPECT_TRUE(std::isinf(g.info().obstacles[0].time_to_contact_at_start));
+  const os::ObstacleTruth o0 = *g.truth(0).find(1);
+  const os::ObstacleTruth o1 = *g.truth(1).find(1);
+  const double speed = (o1.distance_m - o0.distance_m) * g.fps();  // m/s away from the camera
+  ASSERT_GT(speed, 0.0);
+  for (int i = 10; i < g.frameCount(); i += 10) {
+    const os::FrameTruth ti = g.truth(i);
+    const os::ObstacleTruth& o = *ti.find(1);
+    EXPECT_TRUE(std::isinf(o.time_to_contact)) << "frame " << i;
+    EXPECT_NEAR(o.distance_m, o0.distance_m + speed * i / g.fps(), 1e-6 * o.distance_m) << "frame " << i;
+    const double k = o0.distance_m / o.distance_m;
+    EXPECT_NEAR(o.scale_px / o0.scale_px, k, 1e-6) << "frame " << i;
+    // The outline is the union over the exposure, in which a near, fast-shrinking start moves
+    // most: the drawn box within a few pixels.
+    EXPECT_NEAR(o.box.width, o0.box.width * k, 3.0) << "frame " << i;
+    EXPECT_NEAR(o.box.height, o0.box.height * k, 3.0) << "frame " << i;
+  }
+  const os::FrameTruth tl = g.truth(g.frameCount() - 1);
+  EXPECT_NEAR(o0.scale_px / tl.find(1)->scale_px, 6.0, 0.2);
 }
 
 TEST(SceneGenerator, SameSeedSameBytesInAnyRenderOrder) {

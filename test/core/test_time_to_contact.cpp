@@ -5,7 +5,9 @@
 // contact is within 20 % of the truth on 80 % of the frames after the first 10, over seeds,
 // frame sizes and aircraft kinds. Seeds 1-3 at 640x480 are the scenes the looming estimator's
 // design was chosen on; the others were not looked at before this test was written.
-// A constant-size crossing is not reported as closing beyond doubt (rate above twice its sigma).
+// A constant-size crossing is not reported as closing beyond doubt (rate above twice its sigma),
+// nor an aircraft flying away (`recede`).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -30,6 +32,9 @@ struct TtcScore {
   int covered = 0;     // of those after kSkip, frames whose truth is within 3 reported sigma
   int scored = 0;      // frames after kSkip reported closing beyond doubt
   int tracked = 0;     // frames with an obstacle reported
+  int receding = 0;    // frames reported receding beyond doubt: expansion rate < -2 sigma
+  int followed = 0;    // frames whose reported box centre is within 20 px of the truth's
+  double last_size_ratio = 0.0;  // reported / true sqrt(area) at the last frame
 };
 
 TtcScore run(const std::string& name, int seed, cv::Size size, const core::Params& params = core::Params()) {
@@ -49,6 +54,10 @@ TtcScore run(const std::string& name, int seed, cv::Size size, const core::Param
     const core::Obstacle& o = out.front();
     const bool closing = o.expansion_rate > 2.0 * o.expansion_rate_sigma;
     s.closing += closing ? 1 : 0;
+    s.receding += o.expansion_rate < -2.0 * o.expansion_rate_sigma ? 1 : 0;
+    const cv::Point2f centre_error = (o.box.tl() + o.box.br()) * 0.5f - (m->box.tl() + m->box.br()) * 0.5f;
+    s.followed += std::hypot(centre_error.x, centre_error.y) <= 20.0f ? 1 : 0;
+    s.last_size_ratio = std::sqrt(o.box.area() / std::max(1.0f, m->box.area()));
     if (i < kSkip || !std::isfinite(m->time_to_contact)) continue;
     ++s.checked;
     const double err = std::abs(o.time_to_contact - m->time_to_contact);
@@ -115,6 +124,18 @@ TEST(TimeToContact, ConstantSizeIsNotClosing) {
   for (int seed = 1; seed <= 2; ++seed) {
     const TtcScore s = run("crossing", seed, {640, 480});
     EXPECT_GE(s.tracked, kFrames - 5) << "seed " << seed;  // followed, and not closing
+    EXPECT_LE(s.closing, kFrames / 10) << "seed " << seed;
+  }
+}
+
+// Flying away is never closing. The line printed per seed also says how the box follows the
+// shrinking aircraft (centre within 20 px, box size at the last frame; docs/measurements.md).
+TEST(TimeToContact, RecedingIsNotClosing) {
+  for (int seed = 1; seed <= 6; ++seed) {
+    const TtcScore s = run("recede", seed, {640, 480});
+    std::printf("[ ttc      ] recede seed %d: receding beyond doubt on %d, centre within 20 px on %d of %d frames, "
+                "box / true size at the last %.2f\n", seed, s.receding, s.followed, kFrames, s.last_size_ratio);
+    EXPECT_GE(s.tracked, kFrames - 5) << "seed " << seed;
     EXPECT_LE(s.closing, kFrames / 10) << "seed " << seed;
   }
 }
