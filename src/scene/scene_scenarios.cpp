@@ -18,6 +18,39 @@ float flapAt(double t, double freq, double phase) {
   return static_cast<float>(0.2 + 0.65 * env * sinTurn(freq * t + phase));
 }
 
+// An aircraft flying straight towards the camera or away from it: its image centre moves along
+// a line through `focus` (the point it flies at or from), at `offset` from it when its size
+// factor k is 1, and its attitude stays fixed.
+struct LineOfSight {
+  cv::Point2d focus, offset;
+  float yaw = 0.0f, elevation = 0.0f, bank = 0.0f;
+  double flap_phase = 0.0;
+};
+
+LineOfSight drawLineOfSight(Rng& rt, cv::Point2d focus, double Wd, double Hd, double offset_scale) {
+  LineOfSight l;
+  l.focus = focus;
+  const double ang = rt.uniform(0.0, 2.0 * kPi);
+  l.offset = cv::Point2d(detCos(ang) * 0.09 * Wd, detSin(ang) * 0.06 * Hd) * offset_scale;
+  l.yaw = static_cast<float>(0.5 * kPi + rt.uniform(-0.45, 0.45));
+  l.elevation = static_cast<float>(rt.uniform(-0.18, 0.04));
+  l.bank = static_cast<float>(rt.uniform(-0.12, 0.12));
+  l.flap_phase = rt.uniform(0, 1);
+  return l;
+}
+
+// The pose at time t with size factor k (1 at the reference size span0).
+Pose poseOnLineOfSight(const LineOfSight& l, double span0, double k, double t) {
+  Pose p;
+  p.centre = cv::Point2f(l.focus + l.offset * k);
+  p.scale = static_cast<float>(span0 * k);
+  p.yaw = l.yaw;
+  p.elevation = l.elevation;
+  p.bank = l.bank;
+  p.flap = flapAt(t, 3.2, l.flap_phase);
+  return p;
+}
+
 }  // namespace
 
 const SceneGenerator::Impl::BaseScenario& SceneGenerator::Impl::findBaseScenario(const std::string& name) {
@@ -49,21 +82,10 @@ void SceneGenerator::Impl::placeCollisionCourse(const ObstaclePlacement& at, Rng
   const double T = D * ratio / (ratio - 1.0);
   const cv::Point2d foe(Wd * (0.5 + rt.uniform(-0.12, 0.12)),
                         flags.clutter ? at.horizon - 0.05 * Hd : Hd * (0.4 + rt.uniform(-0.06, 0.04)));
-  const double ang = rt.uniform(0.0, 2.0 * kPi);
-  const cv::Point2d off0 = cv::Point2d(detCos(ang) * 0.09 * Wd, detSin(ang) * 0.06 * Hd) * (1.0 / ratio);
-  const float yaw = static_cast<float>(0.5 * kPi + rt.uniform(-0.45, 0.45));
-  const float elev = static_cast<float>(rt.uniform(-0.18, 0.04));
-  const float bank = static_cast<float>(rt.uniform(-0.12, 0.12));
-  const double fph = rt.uniform(0, 1);
+  const LineOfSight line = drawLineOfSight(rt, foe, Wd, Hd, 1.0 / ratio);
   addTrack(1, c, [=](double t) {
     TrackPose p;
-    const double k = T / (T - t);
-    p.pose.centre = cv::Point2f(foe + off0 * k);
-    p.pose.scale = static_cast<float>(span0 * k);
-    p.pose.yaw = yaw;
-    p.pose.elevation = elev;
-    p.pose.bank = bank;
-    p.pose.flap = flapAt(t, 3.2, fph);
+    p.pose = poseOnLineOfSight(line, span0, T / (T - t), t);
     p.ttc = T - t;
     return p;
   });
@@ -80,21 +102,10 @@ void SceneGenerator::Impl::placeRecede(const ObstaclePlacement& at, Rng& rt) {
   const double span0 = std::min(0.3 * Wd * at.size_mult, 0.9 * Wd);
   const double T = D / (kRecedeRatio - 1.0);
   const cv::Point2d vanish(Wd * (0.5 + rt.uniform(-0.12, 0.12)), Hd * (0.4 + rt.uniform(-0.06, 0.04)));
-  const double ang = rt.uniform(0.0, 2.0 * kPi);
-  const cv::Point2d off0(detCos(ang) * 0.09 * Wd, detSin(ang) * 0.06 * Hd);
-  const float yaw = static_cast<float>(0.5 * kPi + rt.uniform(-0.45, 0.45));
-  const float elev = static_cast<float>(rt.uniform(-0.18, 0.04));
-  const float bank = static_cast<float>(rt.uniform(-0.12, 0.12));
-  const double fph = rt.uniform(0, 1);
+  const LineOfSight line = drawLineOfSight(rt, vanish, Wd, Hd, 1.0);
   addTrack(1, c, [=](double t) {
     TrackPose p;
-    const double k = T / (T + t);
-    p.pose.centre = cv::Point2f(vanish + off0 * k);
-    p.pose.scale = static_cast<float>(span0 * k);
-    p.pose.yaw = yaw;
-    p.pose.elevation = elev;
-    p.pose.bank = bank;
-    p.pose.flap = flapAt(t, 3.2, fph);
+    p.pose = poseOnLineOfSight(line, span0, T / (T + t), t);
     return p;
   });
 }
