@@ -80,9 +80,10 @@ void SceneGenerator::Impl::placeCollisionCourse(const ObstaclePlacement& at, Rng
   const double span0 = span_frac * Wd * at.size_mult;
   ratio = std::max(1.5, std::min(ratio, 0.9 * Wd / std::max(span0, 1e-6)));
   const double T = D * ratio / (ratio - 1.0);
-  const cv::Point2d foe(Wd * (0.5 + rt.uniform(-0.12, 0.12)),
-                        flags.clutter ? at.horizon - 0.05 * Hd : Hd * (0.4 + rt.uniform(-0.06, 0.04)));
-  const LineOfSight line = drawLineOfSight(rt, foe, Wd, Hd, 1.0 / ratio);
+  // The focus of expansion: where the aircraft is headed in the image.
+  const cv::Point2d focus(Wd * (0.5 + rt.uniform(-0.12, 0.12)),
+                          flags.clutter ? at.horizon - 0.05 * Hd : Hd * (0.4 + rt.uniform(-0.06, 0.04)));
+  const LineOfSight line = drawLineOfSight(rt, focus, Wd, Hd, 1.0 / ratio);
   addTrack(1, c, [=](double t) {
     TrackPose p;
     p.pose = poseOnLineOfSight(line, span0, T / (T - t), t);
@@ -99,10 +100,15 @@ void SceneGenerator::Impl::placeRecede(const ObstaclePlacement& at, Rng& rt) {
   constexpr double kRecedeRatio = 6.0;
   const double Wd = at.width, Hd = at.height, D = at.duration;
   const ObstacleClass c = at.mainClass(ObstacleClass::kFixedWing);
-  const double span0 = std::min(0.3 * Wd * at.size_mult, 0.9 * Wd);
+  // At most 0.55 of the frame width, so that with the focus and the offset (at most 0.21 of the
+  // width from the centre) the whole aircraft is in view at the start (`large`).
+  const double span0 = std::min(0.3 * Wd * at.size_mult, 0.55 * Wd);
   const double T = D / (kRecedeRatio - 1.0);
-  const cv::Point2d vanish(Wd * (0.5 + rt.uniform(-0.12, 0.12)), Hd * (0.4 + rt.uniform(-0.06, 0.04)));
-  const LineOfSight line = drawLineOfSight(rt, vanish, Wd, Hd, 1.0);
+  // The focus of contraction: where the aircraft is headed in the image (in front of the raised
+  // horizon under `clutter`, as for the approach).
+  const cv::Point2d focus(Wd * (0.5 + rt.uniform(-0.12, 0.12)),
+                          flags.clutter ? at.horizon - 0.05 * Hd : Hd * (0.4 + rt.uniform(-0.06, 0.04)));
+  const LineOfSight line = drawLineOfSight(rt, focus, Wd, Hd, 1.0);
   addTrack(1, c, [=](double t) {
     TrackPose p;
     p.pose = poseOnLineOfSight(line, span0, T / (T + t), t);

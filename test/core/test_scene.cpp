@@ -243,32 +243,6 @@ TEST(SceneGenerator, ApproachFollowsTheTimeToContactLaw) {
   }
 }
 
-// Recede: the distance grows linearly in time, so the apparent size falls as 1 / distance, to a
-// sixth of the start's over the clip; never closing, so the time to contact is +inf.
-TEST(SceneGenerator, RecedeShrinksAsTheDistanceGrows) {
-  auto g = os::makeScenario("recede", 21, 90, cv::Size(320, 240));
-  ASSERT_EQ(g.info().obstacles.size(), 1u);
-  EXPECT_TRUE(std::isinf(g.info().obstacles[0].time_to_contact_at_start));
-  const os::ObstacleTruth o0 = *g.truth(0).find(1);
-  const os::ObstacleTruth o1 = *g.truth(1).find(1);
-  const double speed = (o1.distance_m - o0.distance_m) * g.fps();  // m/s away from the camera
-  ASSERT_GT(speed, 0.0);
-  for (int i = 10; i < g.frameCount(); i += 10) {
-    const os::FrameTruth ti = g.truth(i);
-    const os::ObstacleTruth& o = *ti.find(1);
-    EXPECT_TRUE(std::isinf(o.time_to_contact)) << "frame " << i;
-    EXPECT_NEAR(o.distance_m, o0.distance_m + speed * i / g.fps(), 1e-6 * o.distance_m) << "frame " << i;
-    const double k = o0.distance_m / o.distance_m;
-    EXPECT_NEAR(o.scale_px / o0.scale_px, k, 1e-6) << "frame " << i;
-    // The outline is the union over the exposure, in which a near, fast-shrinking start moves
-    // most: the drawn box within a few pixels.
-    EXPECT_NEAR(o.box.width, o0.box.width * k, 3.0) << "frame " << i;
-    EXPECT_NEAR(o.box.height, o0.box.height * k, 3.0) << "frame " << i;
-  }
-  const os::FrameTruth tl = g.truth(g.frameCount() - 1);
-  EXPECT_NEAR(o0.scale_px / tl.find(1)->scale_px, 6.0, 0.2);
-}
-
 TEST(SceneGenerator, SameSeedSameBytesInAnyRenderOrder) {
   for (bool mono16 : {false, true}) {
     auto a = os::makeScenario("approach+jitter+jerk+blur+noise+illumination+occlusion+flock+overlay", 99, 40, cv::Size(160, 120), mono16);
