@@ -202,6 +202,10 @@ SenseAvoidScores senseAvoidScores(const std::vector<cv::Rect2f>& predicted, cons
     if (s.first_correct_frame < 0 && present && centreError(predicted[i], gt[i]) <= correct_px) {
       s.first_correct_frame = static_cast<int>(i);
     }
+    if (s.first_box_frame < 0 && reported) {
+      s.first_box_frame = static_cast<int>(i);
+      s.first_box_error = present ? centreError(predicted[i], gt[i]) : std::numeric_limits<double>::infinity();
+    }
     if (reported && confidence[i] >= confident && overlap <= 0.0) ++s.false_confident_frames;
   }
   if (s.frames > 0) {
@@ -209,6 +213,12 @@ SenseAvoidScores senseAvoidScores(const std::vector<cv::Rect2f>& predicted, cons
     s.false_confident_rate = static_cast<double>(s.false_confident_frames) / s.frames;
   }
   return s;
+}
+
+bool firstBoxCorrect(const SenseAvoidScores& s, int within_frames, double correct_px) {
+  return s.first_box_frame >= 0 && s.first_present_frame >= 0 &&
+         s.first_box_frame - s.first_present_frame < within_frames && s.first_box_error >= 0.0 &&
+         s.first_box_error <= correct_px;
 }
 
 }  // namespace eval

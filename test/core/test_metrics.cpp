@@ -225,6 +225,11 @@ TEST(Metrics, SenseAvoidKnownAnswer) {
   EXPECT_NEAR(s.state_accuracy, (0.0 + 0.0 + 50.0 / 150.0 + 1.0 + 1.0 + 0.0) / 6.0, 1e-9);
   EXPECT_EQ(s.first_present_frame, 0);
   EXPECT_EQ(s.first_correct_frame, 2);
+  // The first box is the far one of frame 1 (centre 200 px off on each axis): a wrong start,
+  // whatever comes later.
+  EXPECT_EQ(s.first_box_frame, 1);
+  EXPECT_NEAR(s.first_box_error, 200.0 * std::sqrt(2.0), 1e-9);
+  EXPECT_FALSE(ev::firstBoxCorrect(s, 30));
   EXPECT_EQ(s.false_confident_frames, 2);
   EXPECT_NEAR(s.false_confident_rate, 2.0 / 6.0, 1e-12);
   // A box without confidence is not a confident one; a threshold above every confidence: none.
@@ -242,7 +247,28 @@ TEST(Metrics, SenseAvoidNeverCorrectAndSizes) {
   EXPECT_THROW(ev::senseAvoidScores(far, std::vector<float>(2, 0.0f), gt), std::invalid_argument);
   // A target that enters late: its first frame in view is reported.
   const std::vector<cv::Rect2f> late = {cv::Rect2f(), cv::Rect2f(), cv::Rect2f(0, 0, 10, 10)};
-  EXPECT_EQ(ev::senseAvoidScores(late, std::vector<float>(3, 1.0f), late).first_present_frame, 2);
+  const ev::SenseAvoidScores on_late = ev::senseAvoidScores(late, std::vector<float>(3, 1.0f), late);
+  EXPECT_EQ(on_late.first_present_frame, 2);
+  // Its first box is on it: right, counted from the frame it came into view.
+  EXPECT_EQ(on_late.first_box_frame, 2);
+  EXPECT_DOUBLE_EQ(on_late.first_box_error, 0.0);
+  EXPECT_TRUE(ev::firstBoxCorrect(on_late, 1));
+  EXPECT_FALSE(ev::firstBoxCorrect(on_late, 30, -0.5));
+  // A box before the target is in view: a wrong first box (error +inf), though later ones are right.
+  const std::vector<cv::Rect2f> early = {cv::Rect2f(0, 0, 10, 10), cv::Rect2f(0, 0, 10, 10), cv::Rect2f(0, 0, 10, 10)};
+  const ev::SenseAvoidScores too_early = ev::senseAvoidScores(early, std::vector<float>(3, 1.0f), late);
+  EXPECT_EQ(too_early.first_box_frame, 0);
+  EXPECT_TRUE(std::isinf(too_early.first_box_error));
+  EXPECT_EQ(too_early.first_correct_frame, 2);
+  EXPECT_FALSE(ev::firstBoxCorrect(too_early, 30));
+  // Far boxes from the first frame on: the first box is frame 0's, 100 px off on each axis.
+  EXPECT_EQ(s.first_box_frame, 0);
+  EXPECT_NEAR(s.first_box_error, 100.0 * std::sqrt(2.0), 1e-9);
+  // Never a box: no first box, never correct.
+  const ev::SenseAvoidScores no_box = ev::senseAvoidScores(std::vector<cv::Rect2f>(3), std::vector<float>(3, 0.0f), gt);
+  EXPECT_EQ(no_box.first_box_frame, -1);
+  EXPECT_DOUBLE_EQ(no_box.first_box_error, -1.0);
+  EXPECT_FALSE(ev::firstBoxCorrect(no_box, 30));
   const ev::SenseAvoidScores empty = ev::senseAvoidScores({}, {}, {});
   EXPECT_EQ(empty.frames, 0);
   EXPECT_DOUBLE_EQ(empty.false_confident_rate, 0.0);

@@ -100,9 +100,18 @@ struct SenseAvoidScores {
   double state_accuracy = 0.0;
   int first_present_frame = -1;    // the target's first frame in view; -1: never
   int first_correct_frame = -1;    // -1: never within correct_px
+  // The first box reported at all, right or wrong ("the first box within 20 px of the target": a wrong
+  // first box is a wrong start even when a later one is right): its frame (-1: never a box) and
+  // its centre error in px (+inf when the target is not in view there; -1: never a box).
+  int first_box_frame = -1;
+  double first_box_error = -1.0;
   int false_confident_frames = 0;
   double false_confident_rate = 0.0;
 };
+
+// Whether the first box came within `within_frames` of the target's first frame in view and
+// within `correct_px` of it (the start a sense-and-avoid user sees first).
+bool firstBoxCorrect(const SenseAvoidScores& s, int within_frames, double correct_px = kPrecisionSummaryPx);
 
 // predicted[i] with confidence[i] against gt[i]; an absent predicted box (isAbsent) is "no box".
 // Sizes must match (std::invalid_argument otherwise).

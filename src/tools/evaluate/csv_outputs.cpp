@@ -1,6 +1,7 @@
 // Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
 #include "evaluate/csv_outputs.h"
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -15,9 +16,15 @@ namespace obstacle_tracker {
 namespace evaluate_tool {
 namespace {
 
+// The first box's centre error: "inf" when the target was not in view there, -1 when no box.
+std::string firstBoxError(const ev::SenseAvoidScores& sa) {
+  if (std::isinf(sa.first_box_error)) return "inf";
+  return sa.first_box_frame < 0 ? "-1" : formatNumber(sa.first_box_error, 2);
+}
+
 void writeResultsRow(std::ostream& f, const std::string& seq, const std::string& trk, const std::string& mode,
                      int frames, const ev::OtbScores& sc, double fps, const std::string& lt, const std::string& ms,
-                     const std::string& sa = ",,") {
+                     const std::string& sa = ",,,,") {
   f << seq << "," << trk << "," << mode << "," << frames << "," << sc.frames << "," << formatNumber(sc.precision20, 4)
     << "," << formatNumber(sc.auc, 4) << "," << formatNumber(sc.mean_centre_error, 2) << ","
     << formatNumber(sc.lost_fraction, 4) << "," << formatNumber(fps, 1) << "," << lt << "," << ms << "," << sa
@@ -36,7 +43,8 @@ void writeSequenceRows(std::ostream& f, const EvaluationResults& res) {
       writeResultsRow(f, seq.name, res.trackers[t], "OPE", seq.frames, c.ope, c.fps, lt,
                       formatNumber(c.ms_p99, 2) + "," + formatNumber(c.ms_max, 2),
                       formatNumber(c.sa.state_accuracy, 4) + "," + std::to_string(c.sa.first_correct_frame) + "," +
-                          formatNumber(c.sa.false_confident_rate, 4));
+                          formatNumber(c.sa.false_confident_rate, 4) + "," + std::to_string(c.sa.first_box_frame) +
+                          "," + firstBoxError(c.sa));
       if (c.has_tre) {
         const double fps =
             c.pooled_update_seconds > 0 ? c.pooled_timed_frames / c.pooled_update_seconds : 0.0;
@@ -78,7 +86,7 @@ void writeResultsCsv(const std::string& out, const EvaluationResults& res) {
   std::ofstream f(fs::path(out) / "results.csv");
   f << "sequence,tracker,mode,frames,gt_frames,precision20,auc,mean_centre_error,lost_fraction,fps,"
        "lt_precision,lt_recall,lt_fscore,lt_threshold,frame_ms_p99,frame_ms_max,state_accuracy,"
-       "first_correct_frame,false_confident_rate\n";
+       "first_correct_frame,false_confident_rate,first_box_frame,first_box_error\n";
   writeSequenceRows(f, res);
   for (size_t u = 0; u < res.subsets.size(); ++u) {
     const std::string name = "mean:" + res.subsets[u].name;

@@ -2,12 +2,14 @@
 #include "evaluate/markdown_report.h"
 
 #include <algorithm>
+#include <cmath>
 #include <ctime>
 #include <string>
 #include <vector>
 
 #include "evaluate/machine.h"
 #include "evaluate/number_format.h"
+#include "obstacle_tracker/eval/metrics.h"
 
 namespace obstacle_tracker {
 namespace evaluate_tool {
@@ -112,13 +114,20 @@ void writePerSequence(std::ostream& md, const EvaluationResults& res) {
   md << "\n";
 }
 
+// "error px @ frame" of the first box (sense and avoid table); "-" when there was none.
+std::string firstBoxCell(const eval::SenseAvoidScores& sa) {
+  if (sa.first_box_frame < 0) return "-";
+  const std::string err = std::isinf(sa.first_box_error) ? std::string("inf") : formatNumber(sa.first_box_error, 1);
+  return err + " px @ " + std::to_string(sa.first_box_frame);
+}
+
 // A subset's row of the sense and avoid table: means, clips started in time, worst false confident rate.
 void writeSenseAvoidMeans(std::ostream& md, const EvaluationResults& res, const Subset& sub) {
   md << "| **mean: " << sub.name << "** (state acc. / started within " << kStartWithinFrames
-     << " frames / mean, worst false confident) |";
+     << " frames: a box, the first box / mean, worst false confident) |";
   for (size_t t = 0; t < res.trackers.size(); ++t) {
     double sa = 0.0, fcr = 0.0, worst = 0.0;
-    int n = 0, started = 0;
+    int n = 0, started = 0, first_right = 0;
     for (size_t s : sub.seqs) {
       const ScoreCell& c = res.cells[s][t];
       if (!c.done) continue;
@@ -129,12 +138,13 @@ void writeSenseAvoidMeans(std::ostream& md, const EvaluationResults& res, const 
       // Counted from the target's first frame in view (it may enter late).
       started += (c.sa.first_correct_frame >= 0 &&
                   c.sa.first_correct_frame - c.sa.first_present_frame < kStartWithinFrames) ? 1 : 0;
+      first_right += eval::firstBoxCorrect(c.sa, kStartWithinFrames) ? 1 : 0;
     }
     if (n == 0) {
       md << " - |";
       continue;
     }
-    md << " " << formatNumber(sa / n) << " / " << started << " of " << n << " / "
+    md << " " << formatNumber(sa / n) << " / " << started << ", " << first_right << " of " << n << " / "
        << formatNumber(100.0 * fcr / n, 1) << " %, " << formatNumber(100.0 * worst, 1) << " % |";
   }
   md << "\n";
@@ -145,10 +155,12 @@ void writeSenseAvoidMeans(std::ostream& md, const EvaluationResults& res, const 
 void writeSenseAvoid(std::ostream& md, const EvaluationResults& res) {
   writeTrackerTableHead(
       md,
-      "## Sense and avoid (OPE): state accuracy / first correct frame / false confident rate\n\n"
+      "## Sense and avoid (OPE): state accuracy / first correct frame / first box / false confident rate\n\n"
       "State accuracy as Anti-UAV (IoU where the target is present, 1 for no box where it is absent); first "
-      "correct frame: the first box within 20 px of the target (- never); false confident rate: frames with a "
-      "box of confidence >= 0.5 and IoU 0 (or no target), over all frames.\n\n| sequence |",
+      "correct frame: the first frame with a box within 20 px of the target (- never); first box: the centre error of the first "
+      "box reported at all (px; - never a box, inf: the target was not in view there), which a later correct box "
+      "does not undo; false confident rate: frames with a box of confidence >= 0.5 and IoU 0 (or no target), over "
+      "all frames.\n\n| sequence |",
       1, res.trackers);
   for (size_t s = 0; s < res.seqs.size(); ++s) {
     md << "| " << res.seqs[s].name << " |";
@@ -160,6 +172,7 @@ void writeSenseAvoid(std::ostream& md, const EvaluationResults& res) {
       }
       md << " " << formatNumber(c.sa.state_accuracy) << " / "
          << (c.sa.first_correct_frame < 0 ? std::string("-") : std::to_string(c.sa.first_correct_frame)) << " / "
+         << firstBoxCell(c.sa) << " / "
          << formatNumber(100.0 * c.sa.false_confident_rate, 1) << " % |";
     }
     md << "\n";
