@@ -30,6 +30,12 @@ done
 grep -q "^out_of_view,ours-auto,OPE,.*,[0-9.]*,[0-9.]*,[0-9.]*,[0-9.]*," "$TMP/out/results.csv" \
   || { echo "40-evaluate: no long-term scores for out_of_view"; exit 1; }
 grep -q "^bird,KCF,TRE," "$TMP/out/results.csv" || { echo "40-evaluate: no TRE row"; exit 1; }
+# Every row (per clip OPE and TRE, subset means) has the header's fields; a tracker started on the
+# ground truth has its first box at frame 0 on the target (first_box_frame, first_box_error last).
+awk -F, 'NR == 1 { n = NF } NF != n { print "40-evaluate: results.csv line " NR ": " NF " fields, header " n; bad = 1 }
+         END { exit bad }' "$TMP/out/results.csv" || exit 1
+grep -q "^bird,ours-gt,OPE,.*,0,0.00$" "$TMP/out/results.csv" \
+  || { echo "40-evaluate: ours-gt's first box on bird is not frame 0's, on the target"; exit 1; }
 
 # Each OPE row again from its box file. results.csv rounds to 4 decimals (2 for the centre error,
 # whose slack also covers the 0.0001 px rounding of the boxes); "-" there is "nan" here.

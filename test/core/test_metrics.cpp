@@ -244,6 +244,9 @@ TEST(Metrics, SenseAvoidNeverCorrectAndSizes) {
   EXPECT_EQ(s.first_correct_frame, -1);
   EXPECT_DOUBLE_EQ(s.state_accuracy, 0.0);
   EXPECT_EQ(s.false_confident_frames, 0);
+  // Far boxes from the first frame on: the first box is frame 0's, 100 px off on each axis.
+  EXPECT_EQ(s.first_box_frame, 0);
+  EXPECT_NEAR(s.first_box_error, 100.0 * std::sqrt(2.0), 1e-9);
   EXPECT_THROW(ev::senseAvoidScores(far, std::vector<float>(2, 0.0f), gt), std::invalid_argument);
   // A target that enters late: its first frame in view is reported.
   const std::vector<cv::Rect2f> late = {cv::Rect2f(), cv::Rect2f(), cv::Rect2f(0, 0, 10, 10)};
@@ -261,14 +264,20 @@ TEST(Metrics, SenseAvoidNeverCorrectAndSizes) {
   EXPECT_TRUE(std::isinf(too_early.first_box_error));
   EXPECT_EQ(too_early.first_correct_frame, 2);
   EXPECT_FALSE(ev::firstBoxCorrect(too_early, 30));
-  // Far boxes from the first frame on: the first box is frame 0's, 100 px off on each axis.
-  EXPECT_EQ(s.first_box_frame, 0);
-  EXPECT_NEAR(s.first_box_error, 100.0 * std::sqrt(2.0), 1e-9);
   // Never a box: no first box, never correct.
   const ev::SenseAvoidScores no_box = ev::senseAvoidScores(std::vector<cv::Rect2f>(3), std::vector<float>(3, 0.0f), gt);
   EXPECT_EQ(no_box.first_box_frame, -1);
   EXPECT_DOUBLE_EQ(no_box.first_box_error, -1.0);
   EXPECT_FALSE(ev::firstBoxCorrect(no_box, 30));
+  // Within 30 frames means frames 0-29 after the target's first frame in view: a right first
+  // box 29 frames after it counts, one 30 frames after it does not.
+  for (const int offset : {29, 30}) {
+    std::vector<cv::Rect2f> boxes(40), truth(40, cv::Rect2f(0, 0, 10, 10));
+    boxes[static_cast<std::size_t>(offset)] = truth[0];
+    const ev::SenseAvoidScores late_box = ev::senseAvoidScores(boxes, std::vector<float>(40, 1.0f), truth);
+    EXPECT_EQ(late_box.first_box_frame, offset);
+    EXPECT_EQ(ev::firstBoxCorrect(late_box, 30), offset < 30) << offset;
+  }
   const ev::SenseAvoidScores empty = ev::senseAvoidScores({}, {}, {});
   EXPECT_EQ(empty.frames, 0);
   EXPECT_DOUBLE_EQ(empty.false_confident_rate, 0.0);

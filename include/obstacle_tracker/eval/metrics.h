@@ -17,7 +17,8 @@
 // - Sense and avoid: the Anti-UAV state accuracy (Jiang et al., "Anti-UAV: a large multi-modal
 //   benchmark for UAV tracking", 2021: per frame the IoU where the target is present, 0 there for
 //   no box; where it is absent 1 for no box and 0 for a box; mean over frames), the first frame
-//   whose box is within 20 px of the target (a correct start), and the false confident rate:
+//   whose box is within 20 px of the target (a correct start), the first box reported at all and
+//   its centre error (a wrong first box is a wrong start), and the false confident rate:
 //   frames whose box has confidence >= 0.5 and IoU 0 with the target (or the target is absent),
 //   over all frames -- the output a planner acting on confidence >= 0.5 must never get.
 // IoU is core::boxIou<double> (box_geometry.h), the same computation as the tracking loop's in

@@ -15,7 +15,8 @@ namespace obstacle_tracker {
 namespace evaluate_tool {
 namespace {
 
-// Frames within which a correct first box counts as a start (the auto-initialisation target).
+// Frames from the target's first frame in view within which a start counts (the
+// auto-initialisation target), for both counts: any box within 20 px, and the first box.
 constexpr int kStartWithinFrames = 30;
 
 std::string nowUtc() {
@@ -157,10 +158,10 @@ void writeSenseAvoid(std::ostream& md, const EvaluationResults& res) {
       md,
       "## Sense and avoid (OPE): state accuracy / first correct frame / first box / false confident rate\n\n"
       "State accuracy as Anti-UAV (IoU where the target is present, 1 for no box where it is absent); first "
-      "correct frame: the first frame with a box within 20 px of the target (- never); first box: the centre error of the first "
-      "box reported at all (px; - never a box, inf: the target was not in view there), which a later correct box "
-      "does not undo; false confident rate: frames with a box of confidence >= 0.5 and IoU 0 (or no target), over "
-      "all frames.\n\n| sequence |",
+      "correct frame: the first frame with a box within 20 px of the target (- never); first box: the centre "
+      "error @ frame of the first box reported at all (- never a box, inf: the target was not in view there), "
+      "which a later correct box does not undo; false confident rate: frames with a box of confidence >= 0.5 and "
+      "IoU 0 (or no target), over all frames.\n\n| sequence |",
       1, res.trackers);
   for (size_t s = 0; s < res.seqs.size(); ++s) {
     md << "| " << res.seqs[s].name << " |";
