@@ -28,6 +28,7 @@ void AutoInitializer::Impl::reset() {
   tracks.clear();
   confirmed.clear();
   raw.clear();
+  persistent = -1;
 }
 
 void AutoInitializer::Impl::globalMotion(const cv::Mat& grey) {
@@ -114,10 +115,13 @@ void AutoInitializer::Impl::refine(const cv::Mat& frame, SalientRegion& region) 
 void AutoInitializer::Impl::confirm(const cv::Mat& frame) {
   confirmed.clear();
   raw.clear();
+  persistent = -1;
+  persistent_score = 0.0;
   for (const Candidate& c : candidates) {
     raw.push_back(toRegion(c.box, c.area, c.mean, c.peak / 255.0, c.touches_border));
   }
-  for (const Track& t : tracks) {
+  for (std::size_t i = 0; i < tracks.size(); ++i) {
+    const Track& t = tracks[i];
     if (t.last_frame != frame_index || t.hits < params.auto_init_frames) continue;
     const int age = frame_index - t.first_frame + 1;
     const double seen = static_cast<double>(t.hits) / age;
@@ -126,7 +130,8 @@ void AutoInitializer::Impl::confirm(const cv::Mat& frame) {
     double score = t.sum_peak / (255.0 * t.hits) * seen;
     if (params.auto_init_min_motion > 0.0) {
       double linearity = 0.0;
-      const double motion = motionOf(t, &linearity);
+      bool with_background = false;
+      const double motion = motionOf(t, &linearity, &with_background);
       // At least auto_init_min_motion and half the candidate's size: a region whose extent
       // fluctuates (a textured structure grown at 0.3 x its peak) moves its centre by a
       // fraction of its size without going anywhere.
@@ -139,7 +144,13 @@ void AutoInitializer::Impl::confirm(const cv::Mat& frame) {
         // No motion: a collision course shows as steady growth instead.
         double fit = 0.0;
         const double growth = params.auto_init_min_growth > 0.0 ? growthOf(t, &fit) : 0.0;
-        if (!(growth >= params.auto_init_min_growth) || fit < kMinGrowthFit) continue;
+        if (!(growth >= params.auto_init_min_growth) || fit < kMinGrowthFit) {
+          if (!t.still && !with_background && t.hits >= 2 * params.auto_init_frames && score > persistent_score) {
+            persistent = static_cast<int>(i);
+            persistent_score = score;
+          }
+          continue;
+        }
         score *= std::min(1.0, growth / (kCueSaturation * params.auto_init_min_growth));
       }
     }
@@ -191,6 +202,36 @@ const std::vector<SalientRegion>& AutoInitializer::update(const cv::Mat& frame, 
   m.confirm(frame);
   ++m.frame_index;
   return m.confirmed;
+}
+
+bool AutoInitializer::persistentRegion(const cv::Mat& frame, SalientRegion* region) {
+  Impl& m = *impl_;
+  if (m.persistent < 0 || region == nullptr) return false;
+  const Impl::Track& t = m.tracks[static_cast<std::size_t>(m.persistent)];
+  *region = Impl::toRegion(t.box, t.area, t.last_mean, m.persistent_score, t.touches_border);
+  m.refine(frame, *region);
+  return true;
+}
+
+double AutoInitializer::lineCoherence(const cv::Rect2f& box_f) const {
+  const Impl& m = *impl_;
+  if (m.frame_index == 0) return 0.0;
+  const cv::Mat& grey = m.past[static_cast<std::size_t>((m.frame_index - 1) % (Impl::kLag + 1))];
+  const cv::Rect box = cv::Rect(box_f) & cv::Rect(1, 1, grey.cols - 2, grey.rows - 2);
+  double xx = 0.0, yy = 0.0, xy = 0.0;
+  for (int y = box.y; y < box.y + box.height; ++y) {
+    const uchar* up = grey.ptr<uchar>(y - 1);
+    const uchar* row = grey.ptr<uchar>(y);
+    const uchar* down = grey.ptr<uchar>(y + 1);
+    for (int x = box.x; x < box.x + box.width; ++x) {
+      const double gx = row[x + 1] - row[x - 1], gy = down[x] - up[x];
+      xx += gx * gx;
+      yy += gy * gy;
+      xy += gx * gy;
+    }
+  }
+  const double trace = xx + yy;
+  return trace > 0.0 ? std::sqrt((xx - yy) * (xx - yy) + 4.0 * xy * xy) / trace : 0.0;
 }
 
 double AutoInitializer::stillShare(const cv::Rect2f& box) const {

@@ -83,6 +83,7 @@ constexpr float kGateMinPx = 8.0f;      // association gate: at least this radiu
 constexpr float kGateBoxShare = 0.75f;  // ... or this share of the track's longer box side,
 constexpr float kGatePxPerMissed = 2.0f;  // ... plus this per frame the track went unseen
 constexpr double kMinSeenShare = 0.6;   // a track must have been found on this share of its frames
+constexpr double kWithBackgroundMinPx = 1.0;  // rms image scatter (px) over which moving with the background shows
 constexpr double kCueSaturation = 3.0;  // a cue counts in full at this multiple of its threshold
 
 struct Candidate {
@@ -158,6 +159,8 @@ struct AutoInitializer::Impl {
   std::vector<Candidate> candidates;
   std::vector<Track> tracks;
   std::vector<SalientRegion> confirmed, raw;
+  int persistent = -1;  // index in tracks of the best unconfirmed persistent track, or -1
+  double persistent_score = 0.0;
 
   Impl() {
     candidates.reserve(64);
@@ -188,7 +191,7 @@ struct AutoInitializer::Impl {
   bool changedAgainstBackground(const cv::Rect& box) const;
   int contrastAround(cv::Point2f c) const;
   bool vacated(const Track& t) const;
-  static double motionOf(const Track& t, double* linearity = nullptr);
+  static double motionOf(const Track& t, double* linearity = nullptr, bool* with_background = nullptr);
   static double growthOf(const Track& t, double* fit);
 };
 

@@ -138,9 +138,10 @@ bool AutoInitializer::Impl::vacated(const Track& t) const {
 // and the displacement against the background.
 // `linearity` receives the share of the positions' variance the line explains (for the
 // smaller displacement): near 1 for a target moving steadily, low for a jittering box.
-double AutoInitializer::Impl::motionOf(const Track& t, double* linearity) {
+double AutoInitializer::Impl::motionOf(const Track& t, double* linearity, bool* with_background) {
   const int n = std::min(t.count, kHistory);
   if (linearity) *linearity = 0.0;
+  if (with_background) *with_background = false;
   if (n < 2) return 0.0;
   double mt = 0.0;
   cv::Point2d mi(0, 0), mr(0, 0);
@@ -170,6 +171,10 @@ double AutoInitializer::Impl::motionOf(const Track& t, double* linearity) {
   const double span = t_hi - t_lo;
   const double ni = std::hypot(si.x, si.y), nr = std::hypot(sr.x, sr.y);
   const bool img_smaller = ni < nr;
+  // Its positions scatter in the image (a pan, a shaking camera) but hold still against the
+  // background (a quarter of the image's variance at most): a scene object the camera's motion
+  // carries, world-fixed or drifting with the view.
+  if (with_background) *with_background = vi >= kWithBackgroundMinPx * kWithBackgroundMinPx * n && vr < 0.25 * vi;
   if (linearity) {
     const double explained = (img_smaller ? ni * ni : nr * nr) / stt;
     const double total = img_smaller ? vi : vr;

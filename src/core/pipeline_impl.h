@@ -75,6 +75,7 @@ constexpr float kSoloMargin = 0.5f;          // ... (every other prior below thi
 constexpr float kVerifyPanShare = 0.5f;     // verify(): share of the background's displacement added
 constexpr float kVerifyMinImageMotion = 2.0f;  // verify(): px an overlay never moves in the image
 constexpr double kVerifyStillShare = 0.5;    // verify(): a box with this share of still pixels is an overlay
+constexpr double kVerifyMaxLineCoherence = 0.85;  // verify(): gradients this aligned are a line, no motion evidence
 constexpr float kMaxResize = 1.5f;           // a re-detected box side is within 1/1.5..1.5 x the last
 
 // Keeps the box's centre inside the frame (the box may still stick out).
@@ -152,6 +153,8 @@ struct Pipeline::Impl {
       cv::Point2d start_background{0.0, 0.0};
       float start_log_size = 0.0f;
       float max_image_motion = 0.0f;
+      double coherence_sum = 0.0;  // lineCoherence of the box, summed over the watched frames
+      bool provisional = false;  // started on persistence alone: any confirmed candidate replaces it
     };
 
     Track(const TrackerParams& filter, const LoopParams& loop) : kcf(filter) {
@@ -236,6 +239,8 @@ struct Pipeline::Impl {
   Track* replaceableTrack();
   bool anyUnverified() const;
   Track* challenger();
+  Track* provisionalTrack();
+  void confirmProvisional(const cv::Rect2f& box);
   void removeTrack(const Track* victim);
   void settleChallenge();
   void search(const cv::Mat& frame, double stamp);

@@ -66,7 +66,8 @@ void Pipeline::Impl::mergeTracks() {
 // a challenger that has proved itself a mover, so an obstacle on a collision course, which
 // neither moves nor grows much at first, is not given up for a candidate that has not proved
 // more (an auto-started obstacle that hovers in a still view never verifies and would give way
-// to a mover). While a track is unverified the AutoInitializer costs what it costs while
+// to a mover). A track started on persistence alone (provisional: no cue confirmed it) gives
+// way at once to any candidate a cue confirms. While a track is unverified the AutoInitializer costs what it costs while
 // searching (and allocates as it does: the feature tracks of background_motion.h).
 void Pipeline::Impl::verify(Track& t) {
   if (t.verification.verified || t.status.state == TrackState::kLost) return;
@@ -92,7 +93,12 @@ void Pipeline::Impl::verify(Track& t) {
   const float need = 2.0f * static_cast<float>(params.auto_init_min_motion) + kVerifyPanShare * bg_motion;
   // Moved against the background, and in the image too, or (a target the camera keeps in view)
   // at least a little in the image with pixels that change: an overlay is pixel-locked.
-  const bool moved = own_motion >= need &&
+  // A box on a piece of a line (a contrail behind the aircraft, a wire) cannot show motion along
+  // the line (the aperture problem): the filter slides along it as the view drifts. Judged on
+  // the mean over the watched frames: one frame's coherence of a faint trail dips under any bar.
+  t.verification.coherence_sum += autoinit.lineCoherence(t.status.box);
+  const bool line_like = t.verification.coherence_sum >= kVerifyMaxLineCoherence * t.verification.watched;
+  const bool moved = own_motion >= need && !line_like &&
                      (image_motion >= need || (t.verification.max_image_motion >= kVerifyMinImageMotion &&
                                                autoinit.stillShare(t.status.box) < kVerifyStillShare));
   const float growth = 0.5f * std::log(std::max(1.0f, t.status.box.area())) - t.verification.start_log_size;
@@ -180,12 +186,47 @@ void Pipeline::Impl::search(const cv::Mat& frame, double stamp) {
   for (auto& t : tracks) verify(*t);
   settleChallenge();
   for (const auto& r : found) {
-    if (!usableBox(r.box, frame_size) || overlapsTrack(r.box, kSpawnMaxIou)) continue;
+    if (!usableBox(r.box, frame_size)) continue;
+    if (overlapsTrack(r.box, kSpawnMaxIou)) {
+      confirmProvisional(r.box);
+      continue;
+    }
+    if (activeTracks() >= params.max_obstacles) {
+      if (Track* p = provisionalTrack()) removeTrack(p);
+    }
     if (activeTracks() < params.max_obstacles) {
       newAutoTrack(frame, stamp, r.box);
     } else if (anyUnverified() && challenger() == nullptr) {
       newAutoTrack(frame, stamp, r.box).status.probation = true;
     }
+  }
+  // Nothing confirmed and a free slot: the most persistent candidate, provisionally (the paper
+  // starts on one frame's most salient region; persistence over 2 x auto_init_frames frames is
+  // the multi-frame version of that rule). A target the camera follows, or one that hovers,
+  // shows no motion cue and would otherwise get no box at all. It is reported unconfirmed
+  // (confidence < 0.5) until verify() passes, so only with the verification on.
+  SalientRegion r;
+  if (params.auto_init_verify_frames > 0 && activeTracks() < params.max_obstacles &&
+      autoinit.persistentRegion(frame, &r) && usableBox(r.box, frame_size) && !overlapsTrack(r.box, kSpawnMaxIou)) {
+    newAutoTrack(frame, stamp, r.box).verification.provisional = true;
+  }
+}
+
+// The provisional track (started on persistence alone, still unverified, not a challenger), or none.
+Pipeline::Impl::Track* Pipeline::Impl::provisionalTrack() {
+  for (auto& t : tracks) {
+    if (t->verification.provisional && !t->verification.verified && !t->status.probation &&
+        t->status.state != TrackState::kLost) {
+      return t.get();
+    }
+  }
+  return nullptr;
+}
+
+// A confirmed candidate on a provisional track: the track now stands on a cue.
+void Pipeline::Impl::confirmProvisional(const cv::Rect2f& box) {
+  for (auto& t : tracks) {
+    if (t->verification.provisional && boxIou(box, t->status.box) > 0.0f) t->verification.provisional = false;
   }
 }
 

@@ -43,6 +43,14 @@ class AutoInitializer {
   // Share of the box on the overlay mask (overlay_mask.h): pixels locked to the image while the
   // background moves, the camera's on-screen display. 0 before the camera has moved.
   double overlayShare(const cv::Rect2f& box) const;
+  // The last frame's most persistent candidate track that no cue has confirmed (seen on
+  // 2 x auto_init_frames frames, its pixels not still, not carried by the background's motion),
+  // its box refined as a confirmed one's; false when there is none. Evidence weaker than a cue's: the pipeline starts a provisional track on it that any
+  // confirmed candidate replaces (docs/saliency.md, "Persistence start").
+  bool persistentRegion(const cv::Mat& frame, SalientRegion* region);
+  // Coherence of the last frame's gradients in the box, ((l1 - l2) / (l1 + l2)) of their
+  // structure tensor: 1 for a straight edge or line crossing it, near 0 for a blob or texture.
+  double lineCoherence(const cv::Rect2f& box) const;
 
  private:
   struct Impl;
