@@ -153,7 +153,8 @@ struct Pipeline::Impl {
       cv::Point2d start_background{0.0, 0.0};
       float start_log_size = 0.0f;
       float max_image_motion = 0.0f;
-      double coherence_sum = 0.0;  // lineCoherence of the box, summed over the watched frames
+      double coherence_sum = 0.0;  // lineCoherence of the box, summed over the motion checks
+      int coherence_checks = 0;
       bool provisional = false;  // started on persistence alone: any confirmed candidate replaces it
     };
 

@@ -12,10 +12,18 @@ namespace core {
 
 using namespace pipeline_detail;  // NOLINT(build/namespaces): the pipeline's own constants
 
+namespace {
+
+// Two boxes on the same thing: IoU above max_iou, or either holds the other's centre.
+bool sameThing(const cv::Rect2f& a, const cv::Rect2f& b, float max_iou) {
+  return boxIou(a, b) > max_iou || a.contains(boxCentre(b)) || b.contains(boxCentre(a));
+}
+
+}  // namespace
+
 bool Pipeline::Impl::overlapsTrack(const cv::Rect2f& b, float max_iou) const {
   for (const auto& t : tracks) {
-    if (t->status.state == TrackState::kLost) continue;
-    if (boxIou(b, t->status.box) > max_iou || t->status.box.contains(boxCentre(b)) || b.contains(boxCentre(t->status.box))) return true;
+    if (t->status.state != TrackState::kLost && sameThing(b, t->status.box, max_iou)) return true;
   }
   return false;
 }
@@ -67,8 +75,9 @@ void Pipeline::Impl::mergeTracks() {
 // neither moves nor grows much at first, is not given up for a candidate that has not proved
 // more (an auto-started obstacle that hovers in a still view never verifies and would give way
 // to a mover). A track started on persistence alone (provisional: no cue confirmed it) gives
-// way at once to any candidate a cue confirms. While a track is unverified the AutoInitializer costs what it costs while
-// searching (and allocates as it does: the feature tracks of background_motion.h).
+// way at once to any candidate a cue confirms. While a track is unverified the AutoInitializer
+// costs what it costs while searching (and allocates as it does: the feature tracks of
+// background_motion.h).
 void Pipeline::Impl::verify(Track& t) {
   if (t.verification.verified || t.status.state == TrackState::kLost) return;
   if (params.auto_init_verify_frames <= 0 || params.auto_init_min_motion <= 0.0) {
@@ -97,7 +106,8 @@ void Pipeline::Impl::verify(Track& t) {
   // the line (the aperture problem): the filter slides along it as the view drifts. Judged on
   // the mean over the watched frames: one frame's coherence of a faint trail dips under any bar.
   t.verification.coherence_sum += autoinit.lineCoherence(t.status.box);
-  const bool line_like = t.verification.coherence_sum >= kVerifyMaxLineCoherence * t.verification.watched;
+  ++t.verification.coherence_checks;
+  const bool line_like = t.verification.coherence_sum >= kVerifyMaxLineCoherence * t.verification.coherence_checks;
   const bool moved = own_motion >= need && !line_like &&
                      (image_motion >= need || (t.verification.max_image_motion >= kVerifyMinImageMotion &&
                                                autoinit.stillShare(t.status.box) < kVerifyStillShare));
@@ -206,8 +216,9 @@ void Pipeline::Impl::search(const cv::Mat& frame, double stamp) {
   // shows no motion cue and would otherwise get no box at all. It is reported unconfirmed
   // (confidence < 0.5) until verify() passes, so only with the verification on.
   SalientRegion r;
-  if (params.auto_init_verify_frames > 0 && activeTracks() < params.max_obstacles &&
-      autoinit.persistentRegion(frame, &r) && usableBox(r.box, frame_size) && !overlapsTrack(r.box, kSpawnMaxIou)) {
+  if (params.auto_init_verify_frames > 0 && found.empty() && provisionalTrack() == nullptr &&
+      activeTracks() < params.max_obstacles && autoinit.persistentRegion(frame, &r) && usableBox(r.box, frame_size) &&
+      !overlapsTrack(r.box, kSpawnMaxIou)) {
     newAutoTrack(frame, stamp, r.box).verification.provisional = true;
   }
 }
@@ -226,7 +237,7 @@ Pipeline::Impl::Track* Pipeline::Impl::provisionalTrack() {
 // A confirmed candidate on a provisional track: the track now stands on a cue.
 void Pipeline::Impl::confirmProvisional(const cv::Rect2f& box) {
   for (auto& t : tracks) {
-    if (t->verification.provisional && boxIou(box, t->status.box) > 0.0f) t->verification.provisional = false;
+    if (t->verification.provisional && sameThing(box, t->status.box, kSpawnMaxIou)) t->verification.provisional = false;
   }
 }
 

@@ -215,7 +215,7 @@ TEST(AutoInit, ATargetTheCameraFollowsGetsAProvisionalBox) {
   cv::RNG rng(7);
   const cv::Mat sky = makeSky(rng);
   oc::Pipeline pipeline;
-  int first_on_target = -1, confident_off_target = 0;
+  int first_on_target = -1, confident_off_target = 0, first_box = -1;
   for (int i = 0; i < 60; ++i) {
     const cv::Point2f pan(-1.5f * i, 0.4f * i);
     // The camera keeps the target near the centre, with a hand's error of a pixel or two.
@@ -223,6 +223,12 @@ TEST(AutoInit, ATargetTheCameraFollowsGetsAProvisionalBox) {
     cv::Rect2f truth;
     const cv::Mat frame = makeFrame(sky, pan, target, &truth);
     for (const oc::Obstacle& o : pipeline.process(frame, i / 25.0)) {
+      if (first_box < 0) {
+        // An auto-started track (here the provisional one): unconfirmed, below confidence 0.5.
+        first_box = i;
+        EXPECT_FALSE(o.confirmed);
+        EXPECT_LT(o.confidence, 0.5f);
+      }
       const bool on_target = centreError(o.box, truth) <= 20.0f;
       if (on_target && first_on_target < 0) first_on_target = i;
       if (!on_target && o.confidence >= 0.5f) ++confident_off_target;
