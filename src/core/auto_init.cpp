@@ -117,6 +117,8 @@ void AutoInitializer::Impl::confirm(const cv::Mat& frame) {
   raw.clear();
   persistent = -1;
   persistent_score = 0.0;
+  int set_aside_best = -1;
+  double set_aside_score = 0.0;
   for (const Candidate& c : candidates) {
     raw.push_back(toRegion(c.box, c.area, c.mean, c.peak / 255.0, c.touches_border));
   }
@@ -145,9 +147,13 @@ void AutoInitializer::Impl::confirm(const cv::Mat& frame) {
         double fit = 0.0;
         const double growth = params.auto_init_min_growth > 0.0 ? growthOf(t, &fit) : 0.0;
         if (!(growth >= params.auto_init_min_growth) || fit < kMinGrowthFit) {
-          if (!t.still && !with_background && t.hits >= 2 * params.auto_init_frames && score > persistent_score) {
-            persistent = static_cast<int>(i);
-            persistent_score = score;
+          if (!t.still && !with_background && t.hits >= 2 * params.auto_init_frames) {
+            int& best = t.set_aside ? set_aside_best : persistent;
+            double& best_score = t.set_aside ? set_aside_score : persistent_score;
+            if (score > best_score) {
+              best = static_cast<int>(i);
+              best_score = score;
+            }
           }
           continue;
         }
@@ -157,6 +163,12 @@ void AutoInitializer::Impl::confirm(const cv::Mat& frame) {
     SalientRegion region = toRegion(t.box, t.area, t.last_mean, score, t.touches_border);
     refine(frame, region);
     confirmed.push_back(region);
+  }
+  // Every persistent candidate has had its chance: the round starts again.
+  if (persistent < 0 && set_aside_best >= 0) {
+    for (Track& t : tracks) t.set_aside = false;
+    persistent = set_aside_best;
+    persistent_score = set_aside_score;
   }
   std::sort(confirmed.begin(), confirmed.end(),
             [](const SalientRegion& a, const SalientRegion& b) { return a.score > b.score; });
@@ -213,6 +225,16 @@ bool AutoInitializer::persistentRegion(const cv::Mat& frame, SalientRegion* regi
   return true;
 }
 
+void AutoInitializer::setAsidePersistent(const cv::Rect2f& box) {
+  const cv::Point2f c = boxCentre(box);
+  for (Impl::Track& t : impl_->tracks) {
+    if (cv::Rect2f(t.box).contains(c) || box.contains(t.centre)) t.set_aside = true;
+  }
+}
+
+// Central differences summed over the box by hand: only the three tensor sums are needed, and
+// cv::Sobel / cv::cornerEigenValsAndVecs would allocate gradient images on every call (once per
+// frame per unverified track, on the tracking path).
 double AutoInitializer::lineCoherence(const cv::Rect2f& box_f) const {
   const Impl& m = *impl_;
   if (m.frame_index == 0) return 0.0;

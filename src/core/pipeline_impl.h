@@ -241,6 +241,7 @@ struct Pipeline::Impl {
   bool anyUnverified() const;
   Track* challenger();
   Track* provisionalTrack();
+  void setAsideMotionlessTrack(const cv::Mat& frame);
   void confirmProvisional(const cv::Rect2f& box);
   void removeTrack(const Track* victim);
   void settleChallenge();

@@ -210,6 +210,7 @@ void Pipeline::Impl::search(const cv::Mat& frame, double stamp) {
       newAutoTrack(frame, stamp, r.box).status.probation = true;
     }
   }
+  if (found.empty()) setAsideMotionlessTrack(frame);
   // Nothing confirmed and a free slot: the most persistent candidate, provisionally (the paper
   // starts on one frame's most salient region; persistence over 2 x auto_init_frames frames is
   // the multi-frame version of that rule). A target the camera follows, or one that hovers,
@@ -220,6 +221,25 @@ void Pipeline::Impl::search(const cv::Mat& frame, double stamp) {
       activeTracks() < params.max_obstacles && autoinit.persistentRegion(frame, &r) && usableBox(r.box, frame_size) &&
       !overlapsTrack(r.box, kSpawnMaxIou)) {
     newAutoTrack(frame, stamp, r.box).verification.provisional = true;
+  }
+}
+
+// An auto-started track that has not moved in the image (kVerifyMinImageMotion) in
+// auto_init_verify_frames checks without being verified gives the next most persistent candidate
+// its chance: a hot pixel, a lighthouse or a buoy is often more salient than a distant target and,
+// under a still camera, nothing else tells it from a target that hovers. A track that moves in the
+// image keeps its place (a target the camera follows verifies late), and so does one with no other
+// candidate to try; the auto-initialiser brings the set-aside candidates back once all have had
+// their chance (AutoInitializer::setAsidePersistent).
+void Pipeline::Impl::setAsideMotionlessTrack(const cv::Mat& frame) {
+  if (challenger() != nullptr) return;
+  Track* stale = replaceableTrack();
+  if (stale == nullptr || stale->verification.max_image_motion >= kVerifyMinImageMotion) return;
+  autoinit.setAsidePersistent(stale->status.box);
+  SalientRegion next;
+  if (autoinit.persistentRegion(frame, &next) && usableBox(next.box, frame_size) &&
+      !sameThing(next.box, stale->status.box, kSpawnMaxIou)) {
+    removeTrack(stale);
   }
 }
 

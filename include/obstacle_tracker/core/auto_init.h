@@ -45,9 +45,14 @@ class AutoInitializer {
   double overlayShare(const cv::Rect2f& box) const;
   // The last frame's most persistent candidate track that no cue has confirmed (seen on
   // 2 x auto_init_frames frames, its pixels not still, not carried by the background's motion),
-  // its box refined as a confirmed one's; false when there is none. Evidence weaker than a cue's: the pipeline starts a provisional track on it that any
-  // confirmed candidate replaces (docs/saliency.md, "Persistence start").
+  // its box refined as a confirmed one's; false when there is none. Evidence weaker than a cue's:
+  // the pipeline starts a provisional track on it that any confirmed candidate replaces
+  // (docs/saliency.md, "Persistence start").
   bool persistentRegion(const cv::Mat& frame, SalientRegion* region);
+  // The candidates at `box` had their chance: the track started there was not verified in time
+  // and never moved. persistentRegion() passes them over for the next most persistent candidate
+  // until every candidate has had its chance; then the round starts again.
+  void setAsidePersistent(const cv::Rect2f& box);
   // Coherence of the last frame's gradients in the box, ((l1 - l2) / (l1 + l2)) of their
   // structure tensor: 1 for a straight edge or line crossing it, near 0 for a blob or texture.
   double lineCoherence(const cv::Rect2f& box) const;
