@@ -126,7 +126,8 @@ struct Track {
   double sum_peak = 0.0, last_mean = 0.0;
   bool touches_border = false;
   bool still = false;  // its last candidate was still (can only be confirmed by growth)
-  bool set_aside = false;  // its persistence start had its chance (AutoInitializer::setAsidePersistent)
+  // Its persistence start had its chance (AutoInitializer::setAsidePersistent).
+  bool set_aside = false;
 };
 
 }  // namespace auto_init_detail

@@ -231,14 +231,19 @@ void Pipeline::Impl::search(const cv::Mat& frame, double stamp) {
 // image keeps its place (a target the camera follows verifies late), and so does one with no other
 // candidate to try; the auto-initialiser brings the set-aside candidates back once all have had
 // their chance (AutoInitializer::setAsidePersistent).
+// The auto-initialiser's choice this frame was made before the mark, so the swap comes one
+// detection frame later. The track is removed only when the persistence start in search() will
+// take the next candidate's place (no other provisional track, the candidate not tracked yet).
 void Pipeline::Impl::setAsideMotionlessTrack(const cv::Mat& frame) {
-  if (challenger() != nullptr) return;
+  if (challenger() != nullptr) return;  // a challenger that proves itself replaces it anyway
   Track* stale = replaceableTrack();
   if (stale == nullptr || stale->verification.max_image_motion >= kVerifyMinImageMotion) return;
   autoinit.setAsidePersistent(stale->status.box);
   SalientRegion next;
+  const Track* provisional = provisionalTrack();
   if (autoinit.persistentRegion(frame, &next) && usableBox(next.box, frame_size) &&
-      !sameThing(next.box, stale->status.box, kSpawnMaxIou)) {
+      !sameThing(next.box, stale->status.box, kSpawnMaxIou) && !overlapsTrack(next.box, kSpawnMaxIou) &&
+      (provisional == nullptr || provisional == stale)) {
     removeTrack(stale);
   }
 }

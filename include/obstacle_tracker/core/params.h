@@ -76,7 +76,7 @@ namespace core {
   X(bool, auto_init_reject_static, true, false, true, "",                                          \
     "drop auto-init candidates whose pixels have not changed for 3 frames (overlays)")            \
   X(int, auto_init_verify_frames, 20, 0, 10000, "checks",                                          \
-    "checks (one per detection_interval frames) after which an auto-started track not yet moving like an obstacle yields to one that does, and one that never moved in the image to the next persistent candidate (0 = off)") \
+    "checks (one per detection_interval frames) after which an auto-started track not yet moving like an obstacle yields to one that does, and one that never moved 2 px in the image to the next persistent candidate (0 = off)") \
   X(double, extent_contrast, 0.1, 0.0, 1.0, "",                                                    \
     "a detected box grows over the pixels around it above this share of its core's contrast (0 = off)")
 
