@@ -242,7 +242,7 @@ void Pipeline::Impl::setAsideMotionlessTrack(const cv::Mat& frame) {
   SalientRegion next;
   const Track* provisional = provisionalTrack();
   if (autoinit.persistentRegion(frame, &next) && usableBox(next.box, frame_size) &&
-      !sameThing(next.box, stale->status.box, kSpawnMaxIou) && !overlapsTrack(next.box, kSpawnMaxIou) &&
+      !overlapsTrack(next.box, kSpawnMaxIou) &&  // covers the stale track too: it is never lost
       (provisional == nullptr || provisional == stale)) {
     removeTrack(stale);
   }
