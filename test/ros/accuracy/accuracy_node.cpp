@@ -7,14 +7,18 @@
 //   - every ObstacleArray carries the stamp and frame_id of an image that was sent, none twice,
 //     in the order sent; a frame goes unanswered only while the tracker was busy with an earlier
 //     one, and the last frame is answered (frame_delivery.h);
-//   - OTB precision at 20 px and success AUC (src/eval/metrics.cpp, the evaluate tool's code) of
-//     the best obstacle against the ground truth, over the answered frames, at least
-//     ~min_precision20 / ~min_auc.
+//   - in lock-step, OTB precision at 20 px and success AUC (src/eval/metrics.cpp, the evaluate
+//     tool's code) of the best obstacle against the ground truth, at least ~min_precision20 /
+//     ~min_auc.
 // ~pace chooses how the bag is sent:
 //   lockstep  the next image once the last one is answered: every frame is answered, so the
 //             scores are those of the whole clip whatever the machine's speed;
 //   realtime  at the bag's frame rate x ~play_rate, as a camera would: the nodelet drops what it
 //             cannot take, and the delivery rule above says whether it dropped only what it had to.
+//             Which frames it drops depends on the machine's load, so the scores over the answered
+//             frames are printed as figures, not held to the bars: a loaded machine would otherwise
+//             decide the result. Accuracy across dropped frames is held to bars on repeatable
+//             drop patterns instead (test/core/test_pipeline_dropped_frames.cpp, same scene).
 // Latency (image sent -> ObstacleArray received, same clock) and the tracker's processing_time
 // are printed as figures, not asserted: timings belong to benchmarks (bench/) and reports.
 // With ~bag empty the test is skipped and prints ~skip_reason (e.g. no ../shared/sequences).
@@ -292,16 +296,18 @@ TEST_F(AccuracyTest, ReplayThroughTheNodelet) {
   const rt::DeliveryReport delivery =
       rt::checkDelivery(tally.records, static_cast<int>(obstacle_tracker::bridge::FrameSlot<int>::kIdleBacklog));
   const ev::OtbScores otb = ev::otbScores(tally.predicted, tally.truth);
+  const bool lockstep = pace_ == "lockstep";
   std::printf(
       "[ RESULT  ] %s (%s, play rate %.2f): %d frames sent, %d answered, %d dropped (%d while idle), "
       "%d doubled, %d out of order, %d unknown stamps\n"
-      "[ RESULT  ] %s: P@20 %.3f (bar %.3f), AUC %.3f (bar %.3f) over the %d answered frames, mean centre "
-      "error %.1f px, no box %.3f\n"
+      "[ RESULT  ] %s: P@20 %.3f (bar %.3f%s), AUC %.3f (bar %.3f%s) over the %d answered frames, mean "
+      "centre error %.1f px, no box %.3f\n"
       "[ RESULT  ] %s: figures, not bars: latency sent -> answered median %.2f ms, p95 %.2f ms, max %.2f ms; "
       "processing_time median %.2f ms, p99 %.2f ms, first frame %.2f ms\n",
       name_.c_str(), pace_.c_str(), play_rate_, delivery.sent, delivery.answered, delivery.dropped,
       delivery.dropped_while_idle, delivery.doubled, delivery.out_of_order, unknown_, name_.c_str(),
-      otb.precision20, min_precision20_, otb.auc, min_auc_, delivery.answered, otb.mean_centre_error,
+      otb.precision20, min_precision20_, lockstep ? "" : ", lock-step only", otb.auc, min_auc_,
+      lockstep ? "" : ", lock-step only", delivery.answered, otb.mean_centre_error,
       otb.lost_fraction, name_.c_str(), percentile(tally.latency_ms, 50), percentile(tally.latency_ms, 95),
       percentile(tally.latency_ms, 100), percentile(tally.processing_ms, 50), percentile(tally.processing_ms, 99),
       tally.processing_ms.empty() ? NAN : tally.processing_ms.front());
@@ -314,11 +320,11 @@ TEST_F(AccuracyTest, ReplayThroughTheNodelet) {
   EXPECT_EQ(delivery.dropped_while_idle, 0)
       << "frames dropped with no earlier frame in processing (first 20):" << delivery.idle_drops;
   EXPECT_TRUE(delivery.last_answered) << "the last frame sent was not answered";
-  if (pace_ == "lockstep") {
+  if (lockstep) {
     EXPECT_EQ(delivery.dropped, 0) << "a lock-step replay answers every frame";
+    EXPECT_GE(otb.precision20, min_precision20_);
+    EXPECT_GE(otb.auc, min_auc_);
   }
-  EXPECT_GE(otb.precision20, min_precision20_);
-  EXPECT_GE(otb.auc, min_auc_);
 }
 
 }  // namespace
