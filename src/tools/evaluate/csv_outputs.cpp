@@ -18,8 +18,8 @@ namespace {
 
 // The first box's centre error: "inf" when the target was not in view there, -1 when no box.
 std::string firstBoxError(const ev::SenseAvoidScores& sa) {
-  if (std::isinf(sa.first_box_error)) return "inf";
-  return sa.first_box_frame < 0 ? "-1" : formatNumber(sa.first_box_error, 2);
+  if (sa.first_box_frame < 0 && !std::isinf(sa.first_box_error)) return "-1";
+  return formatDistance(sa.first_box_error, 2);
 }
 
 void writeResultsRow(std::ostream& f, const std::string& seq, const std::string& trk, const std::string& mode,

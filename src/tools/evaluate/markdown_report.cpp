@@ -118,8 +118,7 @@ void writePerSequence(std::ostream& md, const EvaluationResults& res) {
 // "error px @ frame" of the first box (sense and avoid table); "-" when there was none.
 std::string firstBoxCell(const eval::SenseAvoidScores& sa) {
   if (sa.first_box_frame < 0) return "-";
-  const std::string err = std::isinf(sa.first_box_error) ? std::string("inf") : formatNumber(sa.first_box_error, 1);
-  return err + " px @ " + std::to_string(sa.first_box_frame);
+  return formatDistance(sa.first_box_error, 1) + " px @ " + std::to_string(sa.first_box_frame);
 }
 
 // A subset's row of the sense and avoid table: means, clips started in time, worst false confident rate.

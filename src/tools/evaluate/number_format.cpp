@@ -15,6 +15,10 @@ std::string formatNumber(double value, int decimals) {
   return os.str();
 }
 
+std::string formatDistance(double px, int decimals) {
+  return std::isinf(px) && px > 0.0 ? std::string("inf") : formatNumber(px, decimals);
+}
+
 std::string formatFps(double fps) {
   if (!(fps > 0.0) || !std::isfinite(fps)) return "-";
   return formatNumber(fps, fps >= 100.0 ? 0 : 1);
