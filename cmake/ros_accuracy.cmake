@@ -7,10 +7,8 @@
 #     package).
 # test/ros/accuracy/accuracy_scene.test and accuracy_real.test send them through the real nodelet
 # in a manager; accuracy_node asserts which frames are answered (with their header, once, in
-# order, dropped only while the tracker is busy) and, sent lock-step, OTB precision/success bars.
-# No bar depends on the machine's speed: sent at the camera's rate, the frames a loaded machine
-# drops decide the scores, so there they are figures (accuracy across dropped frames has its
-# repeatable test, test/core/test_pipeline_dropped_frames.cpp). Without the shared folder the real test is
+# order, dropped only while the tracker is busy) and, sent lock-step, OTB precision/success bars
+# (why not in real time: accuracy_node.cpp). Without the shared folder the real test is
 # registered anyway and reports that it is skipped and why.
 if(NOT CATKIN_ENABLE_TESTING)
   return()
@@ -90,8 +88,8 @@ add_dependencies(accuracy_node ${PROJECT_NAME}_generate_messages_cpp)
 add_dependencies(tests accuracy_node)
 
 # name:= first: rostest names a test's result file after its arguments up to the first '.', and a
-# build path with a dot in it (a mktemp folder) gave both scene tests the same file, which the one
-# finishing last overwrote while the other's result was being read (ctest -j).
+# build path with a dot in it (a mktemp folder) would give the scene tests the same file, which
+# the one finishing last overwrites while another's result is being read (ctest -j).
 add_rostest(test/ros/accuracy/accuracy_scene.test
   ARGS name:=scene bag:=${OT_ACCURACY_DIR}/scene.bag ${OT_ACCURACY_SCENE_BARS}
   DEPENDENCIES obstacle_tracker_nodelet accuracy_node accuracy_bags)

@@ -2,7 +2,6 @@
 #include "evaluate/markdown_report.h"
 
 #include <algorithm>
-#include <cmath>
 #include <ctime>
 #include <string>
 #include <vector>

@@ -16,7 +16,7 @@ std::string formatNumber(double value, int decimals) {
 }
 
 std::string formatDistance(double px, int decimals) {
-  return std::isinf(px) && px > 0.0 ? std::string("inf") : formatNumber(px, decimals);
+  return std::isinf(px) ? std::string("inf") : formatNumber(px, decimals);
 }
 
 std::string formatFps(double fps) {

@@ -12,7 +12,7 @@ namespace evaluate_tool {
 std::string formatNumber(double value, int decimals = 3);
 
 // A distance that may be infinite (the first box's centre error when the target was not in
-// view): "inf" for +infinity, otherwise formatNumber.
+// view): "inf" for an infinity, otherwise formatNumber.
 std::string formatDistance(double px, int decimals);
 
 // Frames per second: whole numbers from 100 up, one decimal below; "-" when not positive.

@@ -297,6 +297,7 @@ TEST_F(AccuracyTest, ReplayThroughTheNodelet) {
       rt::checkDelivery(tally.records, static_cast<int>(obstacle_tracker::bridge::FrameSlot<int>::kIdleBacklog));
   const ev::OtbScores otb = ev::otbScores(tally.predicted, tally.truth);
   const bool lockstep = pace_ == "lockstep";
+  const char* const bar_note = lockstep ? "" : ", lock-step only";
   std::printf(
       "[ RESULT  ] %s (%s, play rate %.2f): %d frames sent, %d answered, %d dropped (%d while idle), "
       "%d doubled, %d out of order, %d unknown stamps\n"
@@ -306,8 +307,8 @@ TEST_F(AccuracyTest, ReplayThroughTheNodelet) {
       "processing_time median %.2f ms, p99 %.2f ms, first frame %.2f ms\n",
       name_.c_str(), pace_.c_str(), play_rate_, delivery.sent, delivery.answered, delivery.dropped,
       delivery.dropped_while_idle, delivery.doubled, delivery.out_of_order, unknown_, name_.c_str(),
-      otb.precision20, min_precision20_, lockstep ? "" : ", lock-step only", otb.auc, min_auc_,
-      lockstep ? "" : ", lock-step only", delivery.answered, otb.mean_centre_error,
+      otb.precision20, min_precision20_, bar_note, otb.auc, min_auc_, bar_note, delivery.answered,
+      otb.mean_centre_error,
       otb.lost_fraction, name_.c_str(), percentile(tally.latency_ms, 50), percentile(tally.latency_ms, 95),
       percentile(tally.latency_ms, 100), percentile(tally.processing_ms, 50), percentile(tally.processing_ms, 99),
       tally.processing_ms.empty() ? NAN : tally.processing_ms.front());
