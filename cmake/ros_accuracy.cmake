@@ -38,9 +38,10 @@ set(OT_TO_BAG_DEPS ${OT_TO_BAG} ${PROJECT_SOURCE_DIR}/scripts/score_boxes_tool.p
   ${PROJECT_NAME}_generate_messages_py)
 set(OT_TO_BAG_ARGS --frame-id camera_optical --score-boxes $<TARGET_FILE:score_boxes>)
 
-# One bag per size: the accuracy size, and 1280x720, sent both lock-step (the bars) and at its
-# 30 Hz like a camera (frames the tracker cannot take are dropped, and must be dropped only then). Each config
-# file is rewritten only when the choice changes, so that a new choice remakes the bag.
+# One bag per size: the accuracy size, sent lock-step (the bars); 1280x720, sent lock-step (the
+# bars) and also at its 30 Hz like a camera (frames the tracker cannot take are dropped, and must
+# be dropped only then). Each config file is rewritten only when the choice changes, so that a
+# new choice remakes the bag.
 set(OT_ACCURACY_BAGS)
 foreach(variant scene scene_720)
   if(variant STREQUAL "scene")
