@@ -63,6 +63,7 @@ case "$MODE" in
   test)
     build
     cmake --build _build -j"$JOBS" --target tests
+    echo "== install and build: $SECONDS s"
     bash scripts/run_tests.sh
     ;;
   *)

@@ -3,13 +3,14 @@
 #
 # Bounded libFuzzer runs (clang, ASan + UBSan) of every fuzz target in fuzz/: fuzz_params (the
 # parameter loader and setters) and fuzz_pipeline (the core Pipeline on random frames, stamps and
-# parameters). Each starts from seed corpora written by fuzz_make_seeds and runs FUZZ_RUNS inputs.
+# parameters). Each starts from seed corpora written by fuzz_make_seeds and runs FUZZ_RUNS inputs
+# or FUZZ_SECONDS, whichever ends first; the targets run side by side, one core each.
 # Any crash, sanitizer report, broken invariant, uncaught exception, input slower than 20 s or
 # RSS above 2 GiB fails the script; the input that did it is kept in $BUILD/artifacts/ (replay:
 # $BUILD/fuzz_NAME $BUILD/artifacts/crash-...; add it to test/core/test_robust_fuzz.cpp).
 #   FUZZ_SECONDS      upper bound in seconds per target (default 120)
 #   FUZZ_RUNS         inputs per target (default: 30000 for fuzz_params, 8000 for fuzz_pipeline,
-#                     about 60 s each here; 0 = no bound, FUZZ_SECONDS alone)
+#                     0 = no bound, FUZZ_SECONDS alone)
 #   FUZZ_SEED         libFuzzer's random seed (default 1). A fixed seed and a run count make
 #                     the CI run a bounded, nearly repeatable walk (a faster machine does not
 #                     explore further; two runs here added 1101/1060 and 735/704 corpus units, so
@@ -39,12 +40,11 @@ rm -rf "$BUILD/seeds"
 mkdir -p "$BUILD/artifacts"
 export ASAN_OPTIONS="halt_on_error=1:detect_leaks=1:abort_on_error=0"
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
-status=0
-ran=0
-for target in "$BUILD"/fuzz_*; do
+# One target on one core: the targets run side by side (each libFuzzer process is one thread),
+# and each one's report is printed when it ends.
+fuzz_target() {
+  local target=$1 name runs corpus log
   name=$(basename "$target")
-  [ -x "$target" ] && [ "$name" != fuzz_make_seeds ] || continue
-  ran=$((ran + 1))
   corpus=$BUILD/corpus/$name
   mkdir -p "$corpus"
   log=$BUILD/$name.log
@@ -63,8 +63,23 @@ for target in "$BUILD"/fuzz_*; do
     echo "FAILED: $name found a problem; last lines of $log:"
     tail -n 60 "$log"
     ls -l "$BUILD/artifacts/" | grep "$name" || true
-    status=1
+    return 1
   fi
+}
+status=0
+pids=()
+reports=()
+for target in "$BUILD"/fuzz_*; do
+  name=$(basename "$target")
+  [ -x "$target" ] && [ "$name" != fuzz_make_seeds ] || continue
+  reports+=("$BUILD/$name.report")
+  fuzz_target "$target" >"$BUILD/$name.report" 2>&1 &
+  pids+=($!)
+done
+ran=${#pids[@]}
+for i in "${!pids[@]}"; do
+  wait "${pids[$i]}" || status=1
+  cat "${reports[$i]}"
 done
 if [ "$ran" -eq 0 ]; then
   echo "FAILED: no fuzz target was built"

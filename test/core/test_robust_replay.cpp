@@ -1,7 +1,7 @@
 // Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
 //
 // Long replay: generated scenes looped through core::Pipeline for OT_REPLAY_FRAMES
-// frames (default 600 here; scripts/extra_tests.d/30-long-replay.sh runs 10 000 under
+// frames (default 600 here; scripts/extra_tests.d/10-sanitizers.sh runs 10 000 under
 // AddressSanitizer + LeakSanitizer, where a leak fails the program at exit). Each loop of the
 // "bag" continues the stamps (the object jumps back: re-detection) except every third loop, where
 // time goes backwards (reset); the parameters change every loop (single / several obstacles,
