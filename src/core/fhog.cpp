@@ -106,6 +106,43 @@ void nearestDirections(const float* gdx, const float* gdy, float* gm2, float* gb
   }
 }
 
+// One orientation along a row of `cols` cells: dst[c] = 0.5 sum_k min(h[c] n_k[c], 0.2) with
+// h = ha (+ hb when given, the contrast-insensitive sum), and each term added to texture (4 rows of
+// `cols`) when given. OpenCV's universal intrinsics run it along the cells; the scalar tail does
+// the same operations in the same order, so every cell gets the same bits either way.
+void truncatedSums(const float* ha, const float* hb, const float* const n[4], float* texture,
+                   int cols, float* dst) {
+  const float trunc = FhogExtractor::kTruncation;
+  int c = 0;
+#if CV_SIMD
+  {
+    const int lanes = cv::v_float32::nlanes;
+    const cv::v_float32 vtrunc = cv::vx_setall_f32(trunc);
+    const cv::v_float32 half = cv::vx_setall_f32(0.5f);
+    for (; c <= cols - lanes; c += lanes) {
+      const cv::v_float32 h = hb ? cv::vx_load(ha + c) + cv::vx_load(hb + c) : cv::vx_load(ha + c);
+      cv::v_float32 sum = cv::vx_setzero_f32();
+      for (int k = 0; k < 4; ++k) {
+        const cv::v_float32 v = cv::v_min(h * cv::vx_load(n[k] + c), vtrunc);
+        sum = sum + v;
+        if (texture) cv::v_store(texture + k * cols + c, cv::vx_load(texture + k * cols + c) + v);
+      }
+      cv::v_store(dst + c, half * sum);
+    }
+  }
+#endif
+  for (; c < cols; ++c) {
+    const float h = hb ? ha[c] + hb[c] : ha[c];
+    float sum = 0.0f;
+    for (int k = 0; k < 4; ++k) {
+      const float v = std::min(h * n[k][c], trunc);
+      sum += v;
+      if (texture) texture[k * cols + c] += v;
+    }
+    dst[c] = 0.5f * sum;
+  }
+}
+
 }  // namespace
 
 void FhogExtractor::compute(const cv::Mat& patch, int cell, cv::Mat& out) {
@@ -124,6 +161,7 @@ void FhogExtractor::compute(const cv::Mat& patch, int cell, cv::Mat& out) {
   hist_.assign(static_cast<size_t>(ncell) * kOrientations, 0.0f);
   energy_.assign(ncell, 0.0f);
   grey_.assign(ncell, 0.0f);
+  texture_.resize(static_cast<size_t>(4) * cols);
   out.create(kChannels * rows, cols, CV_32F);
 
   const float inv_cell = 1.0f / static_cast<float>(cell);
@@ -188,13 +226,14 @@ void FhogExtractor::accumulateRow(const uchar* row, int y, int cell, int nc, int
   const int iy = static_cast<int>(std::floor(yp));
   const float vy0 = yp - static_cast<float>(iy);
   const float vy1 = 1.0f - vy0;
-  float* h0 = iy >= 0 ? hist_.data() + static_cast<size_t>(iy) * cols * kOrientations : nullptr;
-  float* h1 = iy + 1 < rows ? hist_.data() + static_cast<size_t>(iy + 1) * cols * kOrientations
-                            : nullptr;
+  // hist_ is orientation-major (hist_[o * ncell + cell]) so that normalise() runs along cells.
+  const size_t ncell = static_cast<size_t>(rows) * cols;
+  float* h0 = iy >= 0 ? hist_.data() + static_cast<size_t>(iy) * cols : nullptr;
+  float* h1 = iy + 1 < rows ? hist_.data() + static_cast<size_t>(iy + 1) * cols : nullptr;
   for (int x = 0; x < w; ++x) {
     const float mag = gm2[x];  // now the magnitude
     if (mag <= 0.0f) continue;
-    const int bin = static_cast<int>(gbin[x]);
+    const size_t plane = static_cast<size_t>(gbin[x]) * ncell;
     const int ix = col_cell_[x];
     const float vx0 = col_w0_[x];
     const float vx1 = 1.0f - vx0;
@@ -202,73 +241,76 @@ void FhogExtractor::accumulateRow(const uchar* row, int y, int cell, int nc, int
     const bool x1_in = ix + 1 < cols;
     if (h0 != nullptr) {
       const float m = vy1 * mag;
-      if (x0_in) h0[ix * kOrientations + bin] += vx1 * m;
-      if (x1_in) h0[(ix + 1) * kOrientations + bin] += vx0 * m;
+      if (x0_in) h0[plane + ix] += vx1 * m;
+      if (x1_in) h0[plane + ix + 1] += vx0 * m;
     }
     if (h1 != nullptr) {
       const float m = vy0 * mag;
-      if (x0_in) h1[ix * kOrientations + bin] += vx1 * m;
-      if (x1_in) h1[(ix + 1) * kOrientations + bin] += vx0 * m;
+      if (x0_in) h1[plane + ix] += vx1 * m;
+      if (x1_in) h1[plane + ix + 1] += vx0 * m;
     }
   }
 }
 
 // Per cell: the 18 contrast-sensitive and 9 insensitive orientations, each normalised by the 4
 // 2x2 blocks around the cell and truncated, 4 texture sums, and the grey level (fhog.h).
+// Each block's norm is computed once (not once per cell that contains it) and the loops run along
+// a row of cells (truncatedSums); every cell's own sums keep their order.
 void FhogExtractor::normalise(int rows, int cols, int cell, cv::Mat& out) {
-  const int ncell = rows * cols;
-  // Energy of each cell (contrast-insensitive histogram, squared).
-  for (int i = 0; i < ncell; ++i) {
-    const float* hc = hist_.data() + static_cast<size_t>(i) * kOrientations;
-    float e = 0.0f;
-    for (int o = 0; o < 9; ++o) {
-      const float v = hc[o] + hc[o + 9];
-      e += v * v;
+  const size_t ncell = static_cast<size_t>(rows) * cols;
+  // Energy of each cell (contrast-insensitive histogram, squared); compute() zeroed energy_.
+  for (int o = 0; o < 9; ++o) {
+    const float* hs = hist_.data() + o * ncell;
+    const float* hi = hist_.data() + (o + 9) * ncell;
+    for (size_t i = 0; i < ncell; ++i) {
+      const float v = hs[i] + hi[i];
+      energy_[i] += v * v;
     }
-    energy_[i] = e;
   }
+  blockNorms(rows, cols);
 
-  const float eps = 1e-4f;  // as in the paper's reference features
   const float grey_scale = 1.0f / (255.0f * static_cast<float>(cell * cell));
+  float* o0 = out.ptr<float>(0);
+  const size_t bstride = static_cast<size_t>(cols) + 1;
+  for (int r = 0; r < rows; ++r) {
+    // The 4 blocks that contain cell (r, c), top-left corner offsets (-1|0, -1|0): block (i, j)
+    // is block_norm_[(i + 1) * (cols + 1) + j + 1].
+    const float* n[4] = {&block_norm_[r * bstride], &block_norm_[r * bstride + 1],
+                         &block_norm_[(r + 1) * bstride], &block_norm_[(r + 1) * bstride + 1]};
+    const size_t idx = static_cast<size_t>(r) * cols;
+    std::fill(texture_.begin(), texture_.end(), 0.0f);
+    for (int o = 0; o < kOrientations; ++o) {
+      const float* hc = hist_.data() + o * ncell + idx;
+      truncatedSums(hc, nullptr, n, texture_.data(), cols, o0 + o * ncell + idx);
+    }
+    for (int o = 0; o < 9; ++o) {
+      const float* hs = hist_.data() + o * ncell + idx;
+      const float* hi = hist_.data() + (o + 9) * ncell + idx;
+      truncatedSums(hs, hi, n, nullptr, cols, o0 + (kOrientations + o) * ncell + idx);
+    }
+    for (int k = 0; k < 4; ++k) {
+      float* dst = o0 + (27 + k) * ncell + idx;
+      for (int c = 0; c < cols; ++c) dst[c] = 0.2357f * texture_[k * cols + c];
+    }
+    float* grey_dst = o0 + kGreyChannel * ncell + idx;
+    for (int c = 0; c < cols; ++c) grey_dst[c] = grey_[idx + c] * grey_scale - 0.5f;
+  }
+}
+
+// 1 / sqrt(energy + eps) of every 2x2-cell block with its top-left cell in [-1, rows) x
+// [-1, cols); cells outside the grid take the nearest cell's energy (fhog.h).
+void FhogExtractor::blockNorms(int rows, int cols) {
+  const float eps = 1e-4f;  // as in the paper's reference features
   auto energy_at = [&](int r, int c) {
     r = std::min(std::max(r, 0), rows - 1);
     c = std::min(std::max(c, 0), cols - 1);
-    return energy_[r * cols + c];
+    return energy_[static_cast<size_t>(r) * cols + c];
   };
-  for (int r = 0; r < rows; ++r) {
-    for (int c = 0; c < cols; ++c) {
-      // The 4 2x2 blocks that contain cell (r, c): offsets (-1|0, -1|0).
-      float n[4];
-      int b = 0;
-      for (int by = -1; by <= 0; ++by) {
-        for (int bx = -1; bx <= 0; ++bx) {
-          const float s = energy_at(r + by, c + bx) + energy_at(r + by, c + bx + 1) +
-                          energy_at(r + by + 1, c + bx) + energy_at(r + by + 1, c + bx + 1);
-          n[b++] = 1.0f / std::sqrt(s + eps);
-        }
-      }
-      const float* hc = hist_.data() + (static_cast<size_t>(r) * cols + c) * kOrientations;
-      const int idx = r * cols + c;
-      float* o0 = out.ptr<float>(0);
-      const size_t plane = static_cast<size_t>(rows) * cols;
-      float texture[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-      for (int o = 0; o < kOrientations; ++o) {
-        float sum = 0.0f;
-        for (int k = 0; k < 4; ++k) {
-          const float v = std::min(hc[o] * n[k], kTruncation);
-          sum += v;
-          texture[k] += v;
-        }
-        o0[o * plane + idx] = 0.5f * sum;
-      }
-      for (int o = 0; o < 9; ++o) {
-        const float hv = hc[o] + hc[o + 9];
-        float sum = 0.0f;
-        for (int k = 0; k < 4; ++k) sum += std::min(hv * n[k], kTruncation);
-        o0[(kOrientations + o) * plane + idx] = 0.5f * sum;
-      }
-      for (int k = 0; k < 4; ++k) o0[(27 + k) * plane + idx] = 0.2357f * texture[k];
-      o0[kGreyChannel * plane + idx] = grey_[idx] * grey_scale - 0.5f;
+  block_norm_.resize(static_cast<size_t>(rows + 1) * (cols + 1));
+  for (int i = -1; i < rows; ++i) {
+    for (int j = -1; j < cols; ++j) {
+      const float s = energy_at(i, j) + energy_at(i, j + 1) + energy_at(i + 1, j) + energy_at(i + 1, j + 1);
+      block_norm_[static_cast<size_t>(i + 1) * (cols + 1) + (j + 1)] = 1.0f / std::sqrt(s + eps);
     }
   }
 }

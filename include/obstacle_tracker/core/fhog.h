@@ -44,10 +44,13 @@ class FhogExtractor {
  private:
   void accumulateRow(const uchar* row, int y, int cell, int nc, int rows, int cols);
   void normalise(int rows, int cols, int cell, cv::Mat& out);
+  void blockNorms(int rows, int cols);
 
-  std::vector<float> hist_;   // rows x cols x 18 orientation histograms
+  std::vector<float> hist_;   // 18 orientation planes of rows x cols cells
   std::vector<float> energy_; // rows x cols: sum over 9 of (h[o] + h[o+9])^2
   std::vector<float> grey_;   // rows x cols grey sums
+  std::vector<float> block_norm_;  // (rows + 1) x (cols + 1) blocks (see blockNorms())
+  std::vector<float> texture_;     // 4 x cols: one row of cells' texture sums
   // Per-column tables and per-row scratch (see compute()).
   std::vector<int> col_cell_;
   std::vector<float> col_w0_;
