@@ -15,7 +15,10 @@
 // written out, any other prime factor by its direct sum, so any length works and the lengths the
 // filter uses (cv::getOptimalDFTSize: 2^a 3^b 5^c) cost O(n log n). Real input is transformed two
 // rows at a time as one complex row (x_a + i x_b), and only the non-redundant half of the columns
-// is transformed; the other half of the spectrum follows from its conjugate symmetry.
+// is transformed; the other half of the spectrum follows from its conjugate symmetry. The row
+// pairs, and then the columns, are transformed side by side in a split (real / imaginary) layout:
+// each transform gets the same operations in the same order as alone, and the loops across them
+// run in vector registers.
 //
 // Layouts match what the filter used from OpenCV: forward() gives the full complex spectrum
 // (CV_32FC2, rows x cols, as cv::dft with DFT_COMPLEX_OUTPUT), inverse() takes a conjugate-
@@ -51,6 +54,15 @@ class ComplexFft {
   // in: n values spaced in_stride ComplexF apart; out: n contiguous values (not aliasing in).
   void forward(const ComplexF* in, int in_stride, ComplexF* out) const { run(in, in_stride, out, forward_); }
   void inverse(const ComplexF* in, int in_stride, ComplexF* out) const { run(in, in_stride, out, inverse_); }
+  // `count` transforms side by side, the same bits as one at a time: element i of transform b is
+  // read from in[i * in_stride + b * batch_stride] and written, split, to re[i * count + b] and
+  // im[i * count + b] (n * count floats each, not aliasing in).
+  void forwardBatch(const ComplexF* in, int in_stride, int batch_stride, int count, float* re, float* im) const {
+    runBatch(in, in_stride, batch_stride, count, re, im, forward_);
+  }
+  void inverseBatch(const ComplexF* in, int in_stride, int batch_stride, int count, float* re, float* im) const {
+    runBatch(in, in_stride, batch_stride, count, re, im, inverse_);
+  }
 
  private:
   struct Stage {
@@ -58,14 +70,18 @@ class ComplexFft {
     int span;  // length of each sub-transform combined by this stage's butterflies
   };
   void run(const ComplexF* in, int in_stride, ComplexF* out, const std::vector<ComplexF>& twiddles) const;
-  void butterfly(ComplexF* out, int fstride, int span, int radix, const std::vector<ComplexF>& tw) const;
+  void runBatch(const ComplexF* in, int in_stride, int batch_stride, int count, float* re, float* im,
+                const std::vector<ComplexF>& twiddles) const;
+  void butterfly(float* re, float* im, int count, int fstride, int span, int radix,
+                 const std::vector<ComplexF>& tw) const;
 
   int n_ = 0;
   std::vector<Stage> stages_;
   std::vector<ComplexF> forward_;  // e^(-2 pi i k / n)
   std::vector<ComplexF> inverse_;  // e^(+2 pi i k / n)
   std::vector<int> input_order_;   // the input index each output position starts from
-  mutable std::vector<ComplexF> scratch_;  // the generic butterfly's inputs
+  mutable std::vector<float> scratch_;  // the generic butterfly's inputs (split)
+  mutable std::vector<float> single_;   // run()'s split output
 };
 
 // Real 2-D transforms of one size (rows x cols), in OpenCV's layouts (see above).
@@ -91,8 +107,8 @@ class RealFft2d {
 
   int rows_ = 0, cols_ = 0;
   ComplexFft row_fft_, col_fft_;
-  std::vector<ComplexF> line_in_, line_out_;
-  std::vector<ComplexF> half_;  // rows x (cols/2 + 1): the inverse's column pass
+  std::vector<ComplexF> pair_in_;  // row pairs as complex rows a + i b
+  std::vector<float> split_;       // a batch's split output (ComplexFft::forwardBatch)
 };
 
 }  // namespace core
