@@ -6,9 +6,9 @@
 # and this script exits non-zero.
 # Beside them (one thread, so it shares the cores with the suite instead of running after it), the
 # long replay: test_robust_replay (test/core) loops generated scenes through core::Pipeline for
-# OT_REPLAY_FRAMES frames, with resets, parameter changes and grey/colour switches. It fails on any
-# sanitizer report, on a leak at exit and when the heap in use grows by more than 1 MiB after
-# warm-up.
+# OT_REPLAY_FRAMES frames, with resets, parameter changes and grey/colour switches on a fixed
+# schedule. It fails on any sanitizer report, on a leak at exit and when the highest heap in use
+# over the schedule's last period exceeds that over its first by more than 1 MiB.
 #   OT_ASAN_BUILD_DIR  build folder (default _build/asan)
 #   OT_REPLAY_FRAMES   frames of the long replay (default 10000)
 #   JOBS               parallel build jobs (default 2)
