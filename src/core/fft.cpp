@@ -6,15 +6,14 @@
 #include <algorithm>
 #include <cmath>
 
+#include "fft_butterflies.h"
+
 namespace obstacle_tracker {
 namespace core {
 
-namespace {
+using namespace fft_detail;  // NOLINT(build/namespaces): the FFT's own arithmetic and butterflies
 
-inline ComplexF mul(ComplexF a, ComplexF b) { return {a.re * b.re - a.im * b.im, a.re * b.im + a.im * b.re}; }
-inline ComplexF add(ComplexF a, ComplexF b) { return {a.re + b.re, a.im + b.im}; }
-inline ComplexF sub(ComplexF a, ComplexF b) { return {a.re - b.re, a.im - b.im}; }
-inline ComplexF conj(ComplexF a) { return {a.re, -a.im}; }
+namespace {
 
 // cos and sin of t in [0, pi/4] by their Taylor series to t^20 (the first omitted term is below
 // 1e-19 there, far under a float's rounding): plain double operations, the same on every machine.
@@ -42,132 +41,6 @@ std::vector<int> radices(int n) {
     n /= p;
   }
   return r;
-}
-
-// The butterflies of ComplexFft::butterfly, one per radix, on `count` transforms at once in the
-// split layout (element i of transform b at re[i * count + b], im[i * count + b]): `p` transforms
-// of length m (elements q m .. q m + m - 1) into one of length p m, with
-// tw[j fstride] = e^(-+2 pi i j / (p m)). Each transform gets the operations of the one-at-a-time
-// formula, in its order, through the same helpers (mul, add, sub); the loops over b only let the
-// compiler run the transforms side by side in vector registers, which does not change a bit.
-struct Split {
-  float* re;
-  float* im;
-  int count;
-  ComplexF get(long i, int b) const { return {re[i * count + b], im[i * count + b]}; }
-  void set(long i, int b, ComplexF v) const {
-    re[i * count + b] = v.re;
-    im[i * count + b] = v.im;
-  }
-};
-
-void butterfly2(const Split& x, int fstride, int m, const std::vector<ComplexF>& tw) {
-  for (int u = 0; u < m; ++u) {
-    const ComplexF w = tw[static_cast<std::size_t>(u * fstride)];
-    for (int b = 0; b < x.count; ++b) {
-      const ComplexF a0 = x.get(u, b);
-      const ComplexF t = mul(x.get(u + m, b), w);
-      x.set(u + m, b, sub(a0, t));
-      x.set(u, b, add(a0, t));
-    }
-  }
-}
-
-void butterfly4(const Split& x, int fstride, int m, const std::vector<ComplexF>& tw) {
-  // -i (forward) or +i (inverse) is the quarter turn tw[fstride m].
-  const bool forward = tw[static_cast<std::size_t>(fstride * m)].im < 0.0f;
-  for (int u = 0; u < m; ++u) {
-    const ComplexF w1 = tw[static_cast<std::size_t>(u * fstride)];
-    const ComplexF w2 = tw[static_cast<std::size_t>(2 * u * fstride)];
-    const ComplexF w3 = tw[static_cast<std::size_t>(3 * u * fstride)];
-    for (int b = 0; b < x.count; ++b) {
-      const ComplexF a0 = x.get(u, b);
-      const ComplexF a1 = mul(x.get(u + m, b), w1);
-      const ComplexF a2 = mul(x.get(u + 2 * m, b), w2);
-      const ComplexF a3 = mul(x.get(u + 3 * m, b), w3);
-      const ComplexF s02 = add(a0, a2), d02 = sub(a0, a2);
-      const ComplexF s13 = add(a1, a3), d13 = sub(a1, a3);
-      // d13 times the quarter turn: -i d13 = (d13.im, -d13.re) forward, +i d13 inverse.
-      const ComplexF rot = forward ? ComplexF{d13.im, -d13.re} : ComplexF{-d13.im, d13.re};
-      x.set(u, b, add(s02, s13));
-      x.set(u + m, b, add(d02, rot));
-      x.set(u + 2 * m, b, sub(s02, s13));
-      x.set(u + 3 * m, b, sub(d02, rot));
-    }
-  }
-}
-
-void butterfly3(const Split& x, int fstride, int m, const std::vector<ComplexF>& tw) {
-  // w = tw[fstride m] = e^(-+2 pi i / 3) = (-1/2, -+sqrt(3)/2).
-  const float h = tw[static_cast<std::size_t>(fstride * m)].im;
-  for (int u = 0; u < m; ++u) {
-    const ComplexF w1 = tw[static_cast<std::size_t>(u * fstride)];
-    const ComplexF w2 = tw[static_cast<std::size_t>(2 * u * fstride)];
-    for (int b = 0; b < x.count; ++b) {
-      const ComplexF a0 = x.get(u, b);
-      const ComplexF a1 = mul(x.get(u + m, b), w1);
-      const ComplexF a2 = mul(x.get(u + 2 * m, b), w2);
-      const ComplexF s = add(a1, a2), d = sub(a1, a2);
-      const ComplexF mid = {a0.re - 0.5f * s.re, a0.im - 0.5f * s.im};
-      const ComplexF rot = {-h * d.im, h * d.re};  // i h d
-      x.set(u, b, add(a0, s));
-      x.set(u + m, b, add(mid, rot));
-      x.set(u + 2 * m, b, sub(mid, rot));
-    }
-  }
-}
-
-void butterfly5(const Split& x, int fstride, int m, const std::vector<ComplexF>& tw) {
-  // w = tw[fstride m] = e^(-+2 pi i / 5), w^2; w^3 and w^4 are their conjugates, so the sums
-  // pair a1 with a4 and a2 with a3.
-  const ComplexF w1 = tw[static_cast<std::size_t>(fstride * m)];
-  const ComplexF w2 = tw[static_cast<std::size_t>(2 * fstride * m)];
-  for (int u = 0; u < m; ++u) {
-    const ComplexF t1 = tw[static_cast<std::size_t>(u * fstride)];
-    const ComplexF t2 = tw[static_cast<std::size_t>(2 * u * fstride)];
-    const ComplexF t3 = tw[static_cast<std::size_t>(3 * u * fstride)];
-    const ComplexF t4 = tw[static_cast<std::size_t>(4 * u * fstride)];
-    for (int b = 0; b < x.count; ++b) {
-      const ComplexF a0 = x.get(u, b);
-      const ComplexF a1 = mul(x.get(u + m, b), t1);
-      const ComplexF a2 = mul(x.get(u + 2 * m, b), t2);
-      const ComplexF a3 = mul(x.get(u + 3 * m, b), t3);
-      const ComplexF a4 = mul(x.get(u + 4 * m, b), t4);
-      const ComplexF s14 = add(a1, a4), d14 = sub(a1, a4);
-      const ComplexF s23 = add(a2, a3), d23 = sub(a2, a3);
-      const ComplexF r1 = {a0.re + s14.re * w1.re + s23.re * w2.re, a0.im + s14.im * w1.re + s23.im * w2.re};
-      const ComplexF i1 = {d14.im * w1.im + d23.im * w2.im, -(d14.re * w1.im) - d23.re * w2.im};
-      const ComplexF r2 = {a0.re + s14.re * w2.re + s23.re * w1.re, a0.im + s14.im * w2.re + s23.im * w1.re};
-      const ComplexF i2 = {d23.im * w1.im - d14.im * w2.im, d14.re * w2.im - d23.re * w1.im};
-      x.set(u, b, add(a0, add(s14, s23)));
-      x.set(u + m, b, sub(r1, i1));
-      x.set(u + 2 * m, b, add(r2, i2));
-      x.set(u + 3 * m, b, sub(r2, i2));
-      x.set(u + 4 * m, b, add(r1, i1));
-    }
-  }
-}
-
-// Any other radix: the direct sum over the p inputs (p is a prime above 5 here); in holds the p
-// inputs of one u (p x count, split).
-void butterflyDirect(const Split& x, int fstride, int m, int p, const std::vector<ComplexF>& tw, const Split& in) {
-  const long n = static_cast<long>(p) * m * fstride;
-  for (int u = 0; u < m; ++u) {
-    for (int q = 0; q < p; ++q) {
-      for (int b = 0; b < x.count; ++b) in.set(q, b, x.get(u + static_cast<long>(q) * m, b));
-    }
-    for (int q1 = 0; q1 < p; ++q1) {
-      const long k = u + static_cast<long>(q1) * m;
-      for (int b = 0; b < x.count; ++b) x.set(k, b, in.get(0, b));
-      long index = 0;
-      for (int q = 1; q < p; ++q) {
-        index += fstride * k;
-        if (index >= n) index -= n;
-        const ComplexF w = tw[static_cast<std::size_t>(index)];
-        for (int b = 0; b < x.count; ++b) x.set(k, b, add(x.get(k, b), mul(in.get(q, b), w)));
-      }
-    }
-  }
 }
 
 }  // namespace
@@ -203,10 +76,15 @@ void ComplexFft::configure(int n) {
   n_ = n;
   stages_.clear();
   int span = n;
+  widest_radix_ = 1;
   for (int p : radices(n)) {
     span /= p;
     stages_.push_back({p, span});
+    widest_radix_ = std::max(widest_radix_, p);
   }
+  single_.resize(2 * static_cast<std::size_t>(n));
+  scratch_.clear();
+  reserveBatch(1);
   forward_.resize(static_cast<std::size_t>(n));
   inverse_.resize(static_cast<std::size_t>(n));
   for (int k = 0; k < n; ++k) {
@@ -226,8 +104,13 @@ void ComplexFft::configure(int n) {
   }
 }
 
+void ComplexFft::reserveBatch(int count) const {
+  // Only the direct-sum butterfly (a radix above 5) needs scratch: its p inputs, split.
+  const std::size_t needed = widest_radix_ > 5 ? 2 * static_cast<std::size_t>(widest_radix_) * count : 0;
+  if (scratch_.size() < needed) scratch_.resize(needed);
+}
+
 void ComplexFft::run(const ComplexF* in, int in_stride, ComplexF* out, const std::vector<ComplexF>& tw) const {
-  single_.resize(2 * static_cast<std::size_t>(n_));
   float* re = single_.data();
   float* im = re + n_;
   runBatch(in, in_stride, 0, 1, re, im, tw);
@@ -267,7 +150,7 @@ void ComplexFft::butterfly(float* re, float* im, int count, int fstride, int m, 
     case 4: return butterfly4(x, fstride, m, tw);
     case 5: return butterfly5(x, fstride, m, tw);
     default: {
-      scratch_.resize(2 * static_cast<std::size_t>(p) * count);
+      reserveBatch(count);
       const Split in{scratch_.data(), scratch_.data() + static_cast<std::size_t>(p) * count, count};
       return butterflyDirect(x, fstride, m, p, tw, in);
     }
@@ -285,6 +168,8 @@ void RealFft2d::configure(int rows, int cols) {
   const std::size_t pairs = static_cast<std::size_t>((rows + 1) / 2);
   pair_in_.resize(pairs * static_cast<std::size_t>(cols));
   split_.resize(2 * std::max(static_cast<std::size_t>(rows) * half, pairs * static_cast<std::size_t>(cols)));
+  row_fft_.reserveBatch(static_cast<int>(pairs));
+  col_fft_.reserveBatch(static_cast<int>(half));
 }
 
 // Row spectra, columns 0 .. cols/2, two real rows per complex transform: with z = a + i b,
@@ -293,8 +178,12 @@ void RealFft2d::configure(int rows, int cols) {
 void RealFft2d::rowPairsForward(const cv::Mat& src, cv::Mat& dst) {
   const int half = cols_ / 2 + 1;
   const int pairs = (src.rows + 1) / 2;
-  pair_in_.resize(static_cast<std::size_t>(pairs) * cols_);
-  split_.resize(std::max(split_.size(), 2 * pair_in_.size()));
+  // More rows than configured (forwardEachRow) grow the buffers on the first call; they never shrink,
+  // so inverse() keeps the room configure() gave it.
+  const std::size_t needed = static_cast<std::size_t>(pairs) * cols_;
+  if (pair_in_.size() < needed) pair_in_.resize(needed);
+  if (split_.size() < 2 * needed) split_.resize(2 * needed);
+  row_fft_.reserveBatch(pairs);
   for (int q = 0; q < pairs; ++q) {
     const float* a = src.ptr<float>(2 * q);
     const float* b = 2 * q + 1 < src.rows ? src.ptr<float>(2 * q + 1) : nullptr;

@@ -254,8 +254,8 @@ void FhogExtractor::accumulateRow(const uchar* row, int y, int cell, int nc, int
 
 // Per cell: the 18 contrast-sensitive and 9 insensitive orientations, each normalised by the 4
 // 2x2 blocks around the cell and truncated, 4 texture sums, and the grey level (fhog.h).
-// Each block's norm is computed once (not once per cell that contains it) and the loops run along
-// a row of cells (truncatedSums); every cell's own sums keep their order.
+// Each block's norm is computed once for the 4 cells it normalises, and the loops run along a row of
+// cells (truncatedSums) so that they vectorise; every cell's own sums keep their order.
 void FhogExtractor::normalise(int rows, int cols, int cell, cv::Mat& out) {
   const size_t ncell = static_cast<size_t>(rows) * cols;
   // Energy of each cell (contrast-insensitive histogram, squared); compute() zeroed energy_.
@@ -309,7 +309,8 @@ void FhogExtractor::blockNorms(int rows, int cols) {
   block_norm_.resize(static_cast<size_t>(rows + 1) * (cols + 1));
   for (int i = -1; i < rows; ++i) {
     for (int j = -1; j < cols; ++j) {
-      const float s = energy_at(i, j) + energy_at(i, j + 1) + energy_at(i + 1, j) + energy_at(i + 1, j + 1);
+      const float s =
+          energy_at(i, j) + energy_at(i, j + 1) + energy_at(i + 1, j) + energy_at(i + 1, j + 1);
       block_norm_[static_cast<size_t>(i + 1) * (cols + 1) + (j + 1)] = 1.0f / std::sqrt(s + eps);
     }
   }

@@ -123,39 +123,46 @@ TEST(Fft, ComplexTransformOfEveryLengthMatchesTheDirectSum) {
 }
 
 // Transforms side by side (forwardBatch / inverseBatch) give the bits of the same transforms one
-// at a time, for every radix path (lengths 1-40, primes above 5 by the direct sum), any batch size,
-// and the batch read through both strides.
+// at a time (forward / inverse), for every radix path (lengths 1-40, primes above 5 by the direct
+// sum) and batch sizes 1, 3 and 13, read element-major (element i of transform b at i count + b)
+// and transform-major (at b n + i). That the bits are also those of the code before the batches is
+// BitsAreTheSameOnEveryMachine's job.
 TEST(Fft, BatchGivesTheSameBitsAsOneAtATime) {
   std::mt19937 rng(5);
   std::uniform_real_distribution<float> value(-1.0f, 1.0f);
   for (int n = 1; n <= 40; ++n) {
     oc::ComplexFft fft(n);
     for (int count : {1, 3, 13}) {
-      // Element i of transform b at in[i * count + b]: in_stride count, batch_stride 1.
       std::vector<oc::ComplexF> in(static_cast<std::size_t>(n) * count);
       for (auto& z : in) z = {value(rng), value(rng)};
       std::vector<float> re(in.size()), im(in.size());
       std::vector<oc::ComplexF> one(static_cast<std::size_t>(n));
-      for (bool forward : {true, false}) {
-        if (forward) {
-          fft.forwardBatch(in.data(), count, 1, count, re.data(), im.data());
-        } else {
-          fft.inverseBatch(in.data(), count, 1, count, re.data(), im.data());
-        }
-        int differ = 0;
-        for (int b = 0; b < count; ++b) {
+      for (bool element_major : {true, false}) {
+        const int in_stride = element_major ? count : 1;
+        const int batch_stride = element_major ? 1 : n;
+        for (bool forward : {true, false}) {
           if (forward) {
-            fft.forward(in.data() + b, count, one.data());
+            fft.forwardBatch(in.data(), in_stride, batch_stride, count, re.data(), im.data());
           } else {
-            fft.inverse(in.data() + b, count, one.data());
+            fft.inverseBatch(in.data(), in_stride, batch_stride, count, re.data(), im.data());
           }
-          for (int i = 0; i < n; ++i) {
-            const std::size_t at = static_cast<std::size_t>(i) * count + b;
-            differ += std::memcmp(&re[at], &one[static_cast<std::size_t>(i)].re, sizeof(float)) != 0;
-            differ += std::memcmp(&im[at], &one[static_cast<std::size_t>(i)].im, sizeof(float)) != 0;
+          int differ = 0;
+          for (int b = 0; b < count; ++b) {
+            const oc::ComplexF* first = in.data() + static_cast<std::size_t>(b) * batch_stride;
+            if (forward) {
+              fft.forward(first, in_stride, one.data());
+            } else {
+              fft.inverse(first, in_stride, one.data());
+            }
+            for (int i = 0; i < n; ++i) {
+              const std::size_t at = static_cast<std::size_t>(i) * count + b;
+              differ += std::memcmp(&re[at], &one[static_cast<std::size_t>(i)].re, sizeof(float)) != 0;
+              differ += std::memcmp(&im[at], &one[static_cast<std::size_t>(i)].im, sizeof(float)) != 0;
+            }
           }
+          EXPECT_EQ(differ, 0) << "n " << n << " count " << count << (element_major ? " element" : " transform")
+                               << "-major" << (forward ? " forward" : " inverse");
         }
-        EXPECT_EQ(differ, 0) << "n " << n << " count " << count << (forward ? " forward" : " inverse");
       }
     }
   }
@@ -228,16 +235,12 @@ TEST(Fft, KnownAnswers) {
   EXPECT_NEAR(spectrum.at<cv::Vec2f>(1, 2)[0], 0.0f, 1e-4);
 }
 
-// The same input gives the same bits on every machine: a checksum of the spectrum's bit patterns,
-// recorded once. A build whose arithmetic rounds differently (fused multiply-adds, another
-// summation order, the C library's sin/cos) changes it.
+// The same input gives the same bits on every machine: a checksum of the spectra's bit patterns,
+// recorded once, over shapes that take every path: radix 4, 2, 3 and 5 (10 x 24), the direct sum
+// of primes 7, 11 and 13 with odd row counts (7 x 11, 13 x 6), and row spectra alone of a prime
+// times 3 (3 x 33, forwardEachRow). A build whose arithmetic rounds differently (fused
+// multiply-adds, another summation order, the C library's sin/cos) changes it.
 TEST(Fft, BitsAreTheSameOnEveryMachine) {
-  oc::RealFft2d fft;
-  fft.configure(10, 24);
-  cv::Mat spectrum, back;
-  const cv::Mat x = randomReal(10, 24, 42);
-  fft.forward(x, spectrum);
-  fft.inverse(spectrum, back);
   std::uint64_t hash = 1469598103934665603ULL;  // FNV-1a over the float bit patterns
   auto feed = [&hash](const cv::Mat& m) {
     const float* p = m.ptr<float>();
@@ -247,7 +250,25 @@ TEST(Fft, BitsAreTheSameOnEveryMachine) {
       hash = (hash ^ bits) * 1099511628211ULL;
     }
   };
+  oc::RealFft2d fft;
+  cv::Mat spectrum, back;
+  fft.configure(10, 24);
+  const cv::Mat x = randomReal(10, 24, 42);
+  fft.forward(x, spectrum);
+  fft.inverse(spectrum, back);
   feed(spectrum);
   feed(back);
   EXPECT_EQ(hash, 1074497883954837568ULL) << "record this value if the transform was changed on purpose";
+  const int odd_sizes[][2] = {{7, 11}, {13, 6}};
+  for (const auto& s : odd_sizes) {
+    fft.configure(s[0], s[1]);
+    fft.forward(randomReal(s[0], s[1], 43), spectrum);
+    fft.inverse(spectrum, back);
+    feed(spectrum);
+    feed(back);
+  }
+  fft.configure(1, 33);
+  fft.forwardEachRow(randomReal(3, 33, 44), spectrum);
+  feed(spectrum);
+  EXPECT_EQ(hash, 5817248832401544468ULL) << "record this value if the transform was changed on purpose";
 }

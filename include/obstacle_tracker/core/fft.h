@@ -23,8 +23,9 @@
 // Layouts match what the filter used from OpenCV: forward() gives the full complex spectrum
 // (CV_32FC2, rows x cols, as cv::dft with DFT_COMPLEX_OUTPUT), inverse() takes a conjugate-
 // symmetric spectrum of that layout and gives the real signal scaled by 1 / (rows cols) (as
-// DFT_INVERSE | DFT_REAL_OUTPUT | DFT_SCALE). Plans own their scratch: no heap allocation per
-// transform, and one plan must not be used by two threads at once.
+// DFT_INVERSE | DFT_REAL_OUTPUT | DFT_SCALE). Plans own their scratch, sized by configure(): no
+// heap allocation per transform (forwardEachRow on more rows than configured grows it once), and
+// one plan must not be used by two threads at once.
 #pragma once
 
 #include <vector>
@@ -63,6 +64,8 @@ class ComplexFft {
   void inverseBatch(const ComplexF* in, int in_stride, int batch_stride, int count, float* re, float* im) const {
     runBatch(in, in_stride, batch_stride, count, re, im, inverse_);
   }
+  // Makes room for batches of up to `count` transforms (a larger batch grows it on its first call).
+  void reserveBatch(int count) const;
 
  private:
   struct Stage {
@@ -80,6 +83,7 @@ class ComplexFft {
   std::vector<ComplexF> forward_;  // e^(-2 pi i k / n)
   std::vector<ComplexF> inverse_;  // e^(+2 pi i k / n)
   std::vector<int> input_order_;   // the input index each output position starts from
+  int widest_radix_ = 1;
   mutable std::vector<float> scratch_;  // the generic butterfly's inputs (split)
   mutable std::vector<float> single_;   // run()'s split output
 };
