@@ -22,13 +22,59 @@ void AutoInitializer::Impl::reset() {
   motion.reset();
   overlay.reset();
   prev_grey.release();
+  contrast_map.release();  // of the old size: changedAgainstBackground must not read it
   background = cv::Point2d(0.0, 0.0);
+  background_base = cv::Point2d(0.0, 0.0);
   first_to_image = image_to_first = cv::Matx33d::eye();
   frame_index = 0;
   tracks.clear();
   confirmed.clear();
   raw.clear();
   persistent = -1;
+}
+
+// Step 0 (auto_init_impl.h): the working size for frames of `frame_size`.
+void AutoInitializer::Impl::setWorkingSize(cv::Size frame_size) {
+  work_size = frame_size;
+  if (frame_size.width > params.auto_init_max_width) {
+    const double s = static_cast<double>(params.auto_init_max_width) / frame_size.width;
+    work_size = cv::Size(params.auto_init_max_width,
+                         std::max(1, static_cast<int>(std::lround(frame_size.height * s))));
+  }
+  work_scale = cv::Point2d(static_cast<double>(work_size.width) / frame_size.width,
+                           static_cast<double>(work_size.height) / frame_size.height);
+}
+
+// The frame as grey at the working size: one area resize (before the colour conversion, which
+// then runs on the small image) when the frame is wider than auto_init_max_width.
+cv::Mat AutoInitializer::Impl::workingGrey(const cv::Mat& frame) {
+  cv::Mat small = frame;
+  if (work_size != frame.size()) {
+    small = work_arena.get(work_size.height, work_size.width, frame.type());
+    cv::resize(frame, small, work_size, 0, 0, cv::INTER_AREA);
+  }
+  if (small.channels() == 1) return small;
+  cv::Mat grey = grey_arena.get(small.rows, small.cols, CV_8U);
+  cv::cvtColor(small, grey, cv::COLOR_BGR2GRAY);
+  return grey;
+}
+
+// Boxes between working and frame pixels (edges scale; pixel centres follow cv::resize's
+// convention, so a box's edges are where its pixels' outer borders are in both).
+cv::Rect2f AutoInitializer::Impl::toFrame(const cv::Rect2f& b) const {
+  const float sx = static_cast<float>(work_scale.x), sy = static_cast<float>(work_scale.y);
+  return {b.x / sx, b.y / sy, b.width / sx, b.height / sy};
+}
+
+SalientRegion AutoInitializer::Impl::toFrame(SalientRegion r) const {
+  r.box = toFrame(r.box);
+  r.area = static_cast<float>(r.area / (work_scale.x * work_scale.y));
+  return r;
+}
+
+cv::Rect2f AutoInitializer::Impl::toWorking(const cv::Rect2f& b) const {
+  const float sx = static_cast<float>(work_scale.x), sy = static_cast<float>(work_scale.y);
+  return {b.x * sx, b.y * sy, b.width * sx, b.height * sy};
 }
 
 void AutoInitializer::Impl::globalMotion(const cv::Mat& grey) {
@@ -45,7 +91,7 @@ void AutoInitializer::Impl::globalMotion(const cv::Mat& grey) {
   }
 }
 
-// Share of a region's pixels (full-resolution indices y * cols + x) on the overlay mask.
+// Share of a region's pixels (working-frame indices y * cols + x) on the overlay mask.
 double AutoInitializer::Impl::overlayShare(const std::vector<int>& pixels, int cols) const {
   const cv::Mat& mask = overlay.mask();
   if (mask.empty() || pixels.empty()) return 0.0;
@@ -120,7 +166,7 @@ void AutoInitializer::Impl::confirm(const cv::Mat& frame) {
   int set_aside_best = -1;
   double set_aside_score = 0.0;
   for (const Candidate& c : candidates) {
-    raw.push_back(toRegion(c.box, c.area, c.mean, c.peak / 255.0, c.touches_border));
+    raw.push_back(toFrame(toRegion(c.box, c.area, c.mean, c.peak / 255.0, c.touches_border)));
   }
   for (std::size_t i = 0; i < tracks.size(); ++i) {
     const Track& t = tracks[i];
@@ -160,7 +206,7 @@ void AutoInitializer::Impl::confirm(const cv::Mat& frame) {
         score *= std::min(1.0, growth / (kCueSaturation * params.auto_init_min_growth));
       }
     }
-    SalientRegion region = toRegion(t.box, t.area, t.last_mean, score, t.touches_border);
+    SalientRegion region = toFrame(toRegion(t.box, t.area, t.last_mean, score, t.touches_border));
     refine(frame, region);
     confirmed.push_back(region);
   }
@@ -178,8 +224,20 @@ AutoInitializer::AutoInitializer(const SaliencyParams& params) : impl_(new Impl)
 AutoInitializer::~AutoInitializer() { delete impl_; }
 
 void AutoInitializer::setParams(const SaliencyParams& params) {
-  impl_->params = params;
-  clampGroup(impl_->params);
+  Impl& m = *impl_;
+  const cv::Size old_work = m.work_size;
+  m.params = params;
+  clampGroup(m.params);
+  if (!m.size.empty()) {
+    const cv::Point2d carried = backgroundMotion();
+    m.setWorkingSize(m.size);
+    if (m.work_size != old_work) {
+      // Every image of the state has the old working size: start again at the new one, with the
+      // background's displacement so far carried over (tracks being verified measure from it).
+      m.reset();
+      m.background_base = carried;
+    }
+  }
   SaliencyParams refine = impl_->params;
   refine.search_window_scale = kRefineWindowScale;
   refine.min_object_area = 1.0;
@@ -195,12 +253,9 @@ const std::vector<SalientRegion>& AutoInitializer::update(const cv::Mat& frame, 
   if (frame.size() != m.size) {
     m.reset();
     m.size = frame.size();
+    m.setWorkingSize(m.size);
   }
-  cv::Mat grey = frame;
-  if (frame.channels() == 3) {
-    grey = m.grey_arena.get(frame.rows, frame.cols, CV_8U);
-    cv::cvtColor(frame, grey, cv::COLOR_BGR2GRAY);
-  }
+  const cv::Mat grey = m.workingGrey(frame);
   m.globalMotion(grey);
   m.updateStill(grey);
   {
@@ -220,12 +275,13 @@ bool AutoInitializer::persistentRegion(const cv::Mat& frame, SalientRegion* regi
   Impl& m = *impl_;
   if (m.persistent < 0 || region == nullptr) return false;
   const Impl::Track& t = m.tracks[static_cast<std::size_t>(m.persistent)];
-  *region = Impl::toRegion(t.box, t.area, t.last_mean, m.persistent_score, t.touches_border);
+  *region = m.toFrame(Impl::toRegion(t.box, t.area, t.last_mean, m.persistent_score, t.touches_border));
   m.refine(frame, *region);
   return true;
 }
 
-void AutoInitializer::setAsidePersistent(const cv::Rect2f& box) {
+void AutoInitializer::setAsidePersistent(const cv::Rect2f& frame_box) {
+  const cv::Rect2f box = impl_->toWorking(frame_box);
   const cv::Point2f c = boxCentre(box);
   for (Impl::Track& t : impl_->tracks) {
     if (cv::Rect2f(t.box).contains(c) || box.contains(t.centre)) t.set_aside = true;
@@ -239,7 +295,7 @@ double AutoInitializer::lineCoherence(const cv::Rect2f& box_f) const {
   const Impl& m = *impl_;
   if (m.frame_index == 0) return 0.0;
   const cv::Mat& grey = m.past[static_cast<std::size_t>((m.frame_index - 1) % (Impl::kLag + 1))];
-  const cv::Rect box = cv::Rect(box_f) & cv::Rect(1, 1, grey.cols - 2, grey.rows - 2);
+  const cv::Rect box = cv::Rect(m.toWorking(box_f)) & cv::Rect(1, 1, grey.cols - 2, grey.rows - 2);
   double xx = 0.0, yy = 0.0, xy = 0.0;
   for (int y = box.y; y < box.y + box.height; ++y) {
     const uchar* up = grey.ptr<uchar>(y - 1);
@@ -258,13 +314,14 @@ double AutoInitializer::lineCoherence(const cv::Rect2f& box_f) const {
 
 double AutoInitializer::stillShare(const cv::Rect2f& box) const {
   const cv::Mat& still = impl_->still;
-  if (still.empty() || still.size() != impl_->size || !impl_->params.auto_init_reject_static) return 0.0;
-  const cv::Rect r = cv::Rect(box) & cv::Rect(0, 0, still.cols, still.rows);
+  if (still.empty() || still.size() != impl_->work_size || !impl_->params.auto_init_reject_static) return 0.0;
+  const cv::Rect r = cv::Rect(impl_->toWorking(box)) & cv::Rect(0, 0, still.cols, still.rows);
   if (r.area() <= 0) return 0.0;
   return static_cast<double>(impl_->stillPixels(r)) / r.area();
 }
 
-double AutoInitializer::overlayShare(const cv::Rect2f& box) const {
+double AutoInitializer::overlayShare(const cv::Rect2f& frame_box) const {
+  const cv::Rect2f box = impl_->toWorking(frame_box);
   const cv::Point2d s = impl_->motion.workingScale();
   const cv::Rect working(cv::Point(static_cast<int>(box.x * s.x), static_cast<int>(box.y * s.y)),
                          cv::Point(static_cast<int>(std::ceil((box.x + box.width) * s.x)),
@@ -273,7 +330,12 @@ double AutoInitializer::overlayShare(const cv::Rect2f& box) const {
 }
 
 const std::vector<SalientRegion>& AutoInitializer::candidates() const { return impl_->raw; }
-cv::Point2d AutoInitializer::backgroundMotion() const { return impl_->background; }
+double AutoInitializer::framePixelsPerWorkingPixel() const { return 1.0 / impl_->work_scale.x; }
+
+cv::Point2d AutoInitializer::backgroundMotion() const {
+  const Impl& m = *impl_;
+  return m.background_base + cv::Point2d(m.background.x / m.work_scale.x, m.background.y / m.work_scale.y);
+}
 
 }  // namespace core
 }  // namespace obstacle_tracker

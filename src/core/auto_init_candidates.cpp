@@ -16,7 +16,7 @@ namespace core {
 
 using namespace auto_init_detail;  // NOLINT(build/namespaces): the auto-initialiser's own constants
 
-// Candidate map P (CV_8U, native resolution).
+// Candidate map P (CV_8U, the working size of step 0).
 cv::Mat AutoInitializer::Impl::candidateMap(const cv::Mat& grey) {
   const int rows = grey.rows, cols = grey.cols;
   const bool halve = rows >= 64 && cols >= 64;

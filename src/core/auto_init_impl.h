@@ -8,11 +8,17 @@
 // wrong object on real footage (on-screen text, sunlit ground, parked aircraft outrank the
 // target), so candidates are followed over the first frames and confirmed by cues
 // that one frame cannot give. Per frame, on the grey image:
+//   0. a frame wider than auto_init_max_width is shrunk to that width first (one area resize, or
+//      a resize and a colour conversion at the small size); every step below runs at that size,
+//      so a 1080p camera costs about what a 640 px one does. Boxes are mapped back to the
+//      frame's pixels and refined there (step 6). The pixel parameters (auto_init_min_motion,
+//      min_object_area) and constants below are in working pixels: the front end sees every
+//      camera as one of at most that width, whose cues were chosen on such footage;
 //   1. background motion (background_motion.h: feature tracks and a robust similarity, phase
 //      correlation over featureless sky) from the previous frame, summed at the frame centre:
 //      where the background has moved to since the start; and the overlay mask (overlay_mask.h):
 //      pixels that stay locked to the image while the background moves;
-//   2. candidate map P = local contrast at native resolution (|3x3 mean - 21x21 mean|: keeps
+//   2. candidate map P = local contrast at working resolution (|3x3 mean - 21x21 mean|: keeps
 //      targets of a few pixels that a 300 px saliency map loses) x MBD saliency at half
 //      resolution (suppresses ground, trees and buildings connected to the frame border);
 //      auto_init_local_contrast = false uses the MBD map alone;
@@ -139,13 +145,16 @@ struct AutoInitializer::Impl {
   static constexpr std::size_t kMaxTracks = auto_init_detail::kMaxTracks;
 
   SaliencyParams params;
+  cv::Size work_size;          // the size every step runs at (step 0)
+  cv::Point2d work_scale{1.0, 1.0};  // working / frame pixels, per axis
   MbdSaliency mbd;
   SaliencyDetector refiner;
   ExtentGrower extent;
-  MatArena grey_arena, half_arena, up_arena, sal_arena, blur_arena, box_arena, contrast_arena, prob_arena;
+  MatArena grey_arena, work_arena, half_arena, up_arena, sal_arena, blur_arena, box_arena, contrast_arena, prob_arena;
   BackgroundMotion motion;
   OverlayMask overlay;
-  cv::Point2d background{0.0, 0.0};
+  cv::Point2d background{0.0, 0.0};       // working px, since the last restart
+  cv::Point2d background_base{0.0, 0.0};  // frame px: carried over a change of working size
   // The background's motion since the first frame (first-frame coordinates -> this frame's) and
   // its inverse.
   cv::Matx33d first_to_image = cv::Matx33d::eye(), image_to_first = cv::Matx33d::eye();
@@ -173,6 +182,11 @@ struct AutoInitializer::Impl {
 
   // auto_init.cpp
   void reset();
+  void setWorkingSize(cv::Size frame_size);
+  cv::Mat workingGrey(const cv::Mat& frame);
+  cv::Rect2f toFrame(const cv::Rect2f& working_box) const;
+  SalientRegion toFrame(SalientRegion working_region) const;  // box and area
+  cv::Rect2f toWorking(const cv::Rect2f& frame_box) const;
   void globalMotion(const cv::Mat& grey);
   double overlayShare(const std::vector<int>& pixels, int cols) const;
   void updateStill(const cv::Mat& grey);

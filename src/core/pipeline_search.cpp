@@ -99,7 +99,9 @@ void Pipeline::Impl::verify(Track& t) {
   // displacement: the global estimate lags a fast pan (by about half on antiuav_ir_04's pan over
   // sky and a tree line) and a near object moves unlike the distant background (parallax), so
   // a scene object seems to move against the background in proportion to the pan.
-  const float need = 2.0f * static_cast<float>(params.auto_init_min_motion) + kVerifyPanShare * bg_motion;
+  // (auto_init_min_motion and kVerifyMinImageMotion are pixels of the front end's working frame.)
+  const float px = static_cast<float>(autoinit.framePixelsPerWorkingPixel());
+  const float need = 2.0f * px * static_cast<float>(params.auto_init_min_motion) + kVerifyPanShare * bg_motion;
   // Moved against the background, and in the image too, or (a target the camera keeps in view)
   // at least a little in the image with pixels that change: an overlay is pixel-locked.
   // A box on a piece of a line (a contrail behind the aircraft, a wire) cannot show motion along
@@ -109,7 +111,7 @@ void Pipeline::Impl::verify(Track& t) {
   ++t.verification.coherence_checks;
   const bool line_like = t.verification.coherence_sum >= kVerifyMaxLineCoherence * t.verification.coherence_checks;
   const bool moved = own_motion >= need && !line_like &&
-                     (image_motion >= need || (t.verification.max_image_motion >= kVerifyMinImageMotion &&
+                     (image_motion >= need || (t.verification.max_image_motion >= px * kVerifyMinImageMotion &&
                                                autoinit.stillShare(t.status.box) < kVerifyStillShare));
   const float growth = 0.5f * std::log(std::max(1.0f, t.status.box.area())) - t.verification.start_log_size;
   // Growth is evidence only where it measures the object coming closer: while its own pixels
@@ -237,7 +239,9 @@ void Pipeline::Impl::search(const cv::Mat& frame, double stamp) {
 void Pipeline::Impl::setAsideMotionlessTrack(const cv::Mat& frame) {
   if (challenger() != nullptr) return;  // a challenger that proves itself replaces it anyway
   Track* stale = replaceableTrack();
-  if (stale == nullptr || stale->verification.max_image_motion >= kVerifyMinImageMotion) return;
+  if (stale == nullptr ||
+      stale->verification.max_image_motion >= autoinit.framePixelsPerWorkingPixel() * kVerifyMinImageMotion)
+    return;
   autoinit.setAsidePersistent(stale->status.box);
   SalientRegion next;
   const Track* provisional = provisionalTrack();

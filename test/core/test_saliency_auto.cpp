@@ -12,6 +12,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "obstacle_tracker/core/auto_init.h"
+#include "obstacle_tracker/core/box_geometry.h"
 #include "obstacle_tracker/core/pipeline.h"
 #include "obstacle_tracker/core/salient_region.h"
 #include "obstacle_tracker/eval/metrics.h"
@@ -97,6 +98,51 @@ TEST(AutoInit, ConfirmsTheMovingTargetNotTextNorStaticObjects) {
     }
     EXPECT_GE(confirmed_at, oc::Params().auto_init_frames - 1) << "seed " << seed;
     EXPECT_LT(confirmed_at, 25) << "seed " << seed;
+  }
+}
+
+// A 1920 x 1536 and a 1366 x 1093 camera (the scene above, 3x and 2.13x as fine): the front end
+// works on the frame shrunk to auto_init_max_width (640), and what it reports is in the camera's
+// own pixels: the confirmed box on the target at the camera's scale, candidates inside its frame,
+// the background's motion the pan times the scale; when the working width is changed mid-stream
+// the front end restarts at the new size and the background's motion goes on from where it was.
+TEST(AutoInit, AWideFrameIsSearchedAtTheWorkingWidthAndAnsweredInItsOwnPixels) {
+  for (const float fine : {3.0f, 1366.0f / 640.0f}) {
+    cv::RNG rng(102);
+    const cv::Mat sky = makeSky(rng);
+    oc::AutoInitializer init;
+    // Seed 2 of the test above: a panning camera.
+    cv::RNG velocity_rng(202);
+    const cv::Point2f velocity(-velocity_rng.uniform(1.5f, 3.0f), velocity_rng.uniform(-1.0f, 1.0f));
+    const cv::Point2f pan_step(1.0f, 0.5f);
+    cv::Point2f target(320.0f, 220.0f);
+    int confirmed_at = -1;
+    for (int i = 0; i < 40; ++i) {
+      cv::Rect2f truth;
+      const cv::Mat coarse = makeFrame(sky, pan_step * static_cast<float>(i), target, &truth);
+      target += velocity;
+      cv::Mat frame;
+      cv::resize(coarse, frame, cv::Size(cvRound(640 * fine), cvRound(512 * fine)), 0, 0, cv::INTER_LINEAR);
+      if (i == 30) {  // a quarter of the width from here on
+        oc::SaliencyParams narrower;
+        narrower.auto_init_max_width = 160;
+        init.setParams(narrower);
+      }
+      const auto& out = init.update(frame, i / 25.0);
+      EXPECT_NEAR(init.backgroundMotion().x, fine * pan_step.x * i, 2.0 * fine) << "frame " << i;
+      EXPECT_NEAR(init.backgroundMotion().y, fine * pan_step.y * i, 2.0 * fine) << "frame " << i;
+      EXPECT_NEAR(init.framePixelsPerWorkingPixel(), frame.cols / (i < 30 ? 640.0 : 160.0), 1e-9);
+      for (const auto& c : init.candidates())
+        EXPECT_TRUE(cv::Rect2f(0, 0, frame.cols, frame.rows).contains(oc::boxCentre(c.box))) << c.box;
+      if (out.empty() || confirmed_at >= 0) continue;
+      confirmed_at = i;
+      const cv::Rect2f fine_truth(truth.x * fine, truth.y * fine, truth.width * fine, truth.height * fine);
+      EXPECT_LT(centreError(out[0].box, fine_truth), 6.0f * fine) << out[0].box << " truth " << fine_truth;
+      EXPECT_GT(out[0].box.width, 0.5f * fine_truth.width) << out[0].box;
+      EXPECT_LT(out[0].box.width, 2.0f * fine_truth.width) << out[0].box;
+    }
+    EXPECT_GE(confirmed_at, oc::Params().auto_init_frames - 1) << fine;
+    EXPECT_LT(confirmed_at, 25) << fine;
   }
 }
 

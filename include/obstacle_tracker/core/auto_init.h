@@ -37,6 +37,11 @@ class AutoInitializer {
   // centre has moved to since the first frame), for tools and tests.
   const std::vector<SalientRegion>& candidates() const;
   cv::Point2d backgroundMotion() const;
+  // Frames wider than auto_init_max_width are searched shrunk to that width, and the front end's
+  // pixel parameters (auto_init_min_motion, min_object_area) are pixels of that working frame:
+  // this is how many of the frame's own pixels one of them spans (1 for narrower frames).
+  double framePixelsPerWorkingPixel() const;
+  // The boxes below are in the frame's pixels, as are the regions returned.
   // Share of the box's pixels unchanged (within 3 grey levels) for the last 3 frames: an
   // overlay, or a scene under a still camera. 0 when unknown (auto_init_reject_static off).
   double stillShare(const cv::Rect2f& box) const;

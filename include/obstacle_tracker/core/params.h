@@ -48,7 +48,7 @@ namespace core {
   X(double, search_window_scale, 3.0, 1.0, 20.0, "x box",                                          \
     "side of the re-detection window as a multiple of the last box side")                         \
   X(double, min_object_area, 12.0, 1.0, 1.0e6, "px^2",                                             \
-    "smallest salient region (in full-frame pixels) taken as an object")                          \
+    "smallest salient region taken as an object (auto-init: px^2 at auto_init_max_width)")           \
   X(double, max_object_area_fraction, 0.25, 0.0001, 1.0, "",                                       \
     "largest salient region, as a fraction of the frame area")                                    \
   X(int, saliency_max_side, 300, 32, 4096, "px",                                                   \
@@ -67,12 +67,14 @@ namespace core {
   X(int, auto_init_frames, 8, 1, 100, "frames",                                                    \
     "frames a candidate must be seen before auto-initialisation confirms it (1 = single frame)")  \
   X(double, auto_init_min_motion, 4.0, 0.0, 1000.0, "px",                                          \
-    "displacement against both the image and the background needed to confirm (0 = cue off)")    \
+    "displacement against image and background needed to confirm, px at auto_init_max_width (0 = off)")\
   X(double, auto_init_min_growth, 0.2, 0.0, 10.0, "",                                              \
     "or steady growth of ln(size) over the candidate's history (collision course; 0 = cue off)")  \
   X(bool, auto_init_local_contrast, true, false, true, "",                                         \
-    "auto-init candidates from native-resolution local contrast x MBD (false: MBD alone)")       \
+    "auto-init candidates from pixel-level local contrast x MBD (false: MBD alone)")               \
   X(int, auto_init_candidates, 24, 1, 64, "", "candidates examined per frame by auto-initialisation") \
+  X(int, auto_init_max_width, 640, 64, 8192, "px",                                                 \
+    "wider frames are shrunk to this width for auto-initialisation (boxes refined at full size)")  \
   X(bool, auto_init_reject_static, true, false, true, "",                                          \
     "drop auto-init candidates whose pixels have not changed for 3 frames (overlays)")            \
   X(int, auto_init_verify_frames, 20, 0, 10000, "checks",                                          \
