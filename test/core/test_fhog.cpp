@@ -1,5 +1,7 @@
 // Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <stdexcept>
 
 #include <gtest/gtest.h>
@@ -159,4 +161,47 @@ TEST(Fhog, BadInputThrows) {
   EXPECT_THROW(fhog.compute(cv::Mat(16, 16, CV_32F, cv::Scalar(0)), 4, out), std::invalid_argument);
   EXPECT_THROW(fhog.compute(cv::Mat(16, 16, CV_8UC1, cv::Scalar(0)), 0, out), std::invalid_argument);
   EXPECT_THROW(fhog.compute(cv::Mat(3, 16, CV_8UC1, cv::Scalar(0)), 4, out), std::invalid_argument);
+}
+
+// The same patch gives the same bits on every machine and on every code path: a checksum of the
+// features' bit patterns over grey and BGR patches whose widths take the vectorised gradient's
+// full blocks, its scalar ends (first and last pixel, the tail after the last block) and rows too
+// short for a block (widths 1 to 3). Recorded once with the scalar gradient; a change of rounding
+// or of the channel select (ties keep the first channel) changes it.
+TEST(Fhog, BitsAreTheSameOnEveryMachineAndPath) {
+  std::uint64_t hash = 1469598103934665603ULL;  // FNV-1a over the float bit patterns
+  auto feed = [&hash](const cv::Mat& m) {
+    for (int r = 0; r < m.rows; ++r) {
+      const float* p = m.ptr<float>(r);
+      for (int i = 0; i < m.cols; ++i) {
+        std::uint32_t bits;
+        std::memcpy(&bits, &p[i], sizeof bits);
+        hash = (hash ^ bits) * 1099511628211ULL;
+      }
+    }
+  };
+  cv::RNG rng(20261206);
+  Fhog fhog;
+  cv::Mat features;
+  const int widths[] = {1, 2, 3, 8, 16, 17, 18, 19, 33, 34, 35, 50, 67, 97};
+  for (const int type : {CV_8UC1, CV_8UC3}) {
+    for (const int w : widths) {
+      for (const int h : {3, 5, 9}) {
+        cv::Mat patch(h, w, type);
+        rng.fill(patch, cv::RNG::UNIFORM, 0, 256);
+        // Equal channels on some pixels so that the select's ties are taken.
+        if (type == CV_8UC3) {
+          for (int x = 0; x < w; x += 3) {
+            cv::Vec3b& p = patch.at<cv::Vec3b>(h / 2, x);
+            p[1] = p[2] = p[0];
+          }
+        }
+        const int cell = w < 8 ? 1 : 4;
+        if (h < cell) continue;
+        fhog.compute(patch, cell, features);
+        feed(features);
+      }
+    }
+  }
+  EXPECT_EQ(hash, 9734630670380320477ULL) << "record this value if the features were changed on purpose";
 }
