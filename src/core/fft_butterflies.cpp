@@ -7,7 +7,6 @@ namespace obstacle_tracker {
 namespace core {
 namespace fft_detail {
 
-
 void butterfly2(const Split& x, int fstride, int m, const std::vector<ComplexF>& tw) {
   for (int u = 0; u < m; ++u) {
     const ComplexF w = tw[static_cast<std::size_t>(u * fstride)];

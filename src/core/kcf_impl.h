@@ -75,7 +75,6 @@ inline float confidenceOf(float peak, float psr) {
   return std::sqrt(c_peak * c_psr);
 }
 
-
 }  // namespace kcf_detail
 
 struct KcfTracker::Impl {
