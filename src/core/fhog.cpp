@@ -9,187 +9,13 @@
 
 #include <opencv2/core/hal/intrin.hpp>
 
+#include "fhog_gradient.h"
 #include "obstacle_tracker/core/frame_check.h"
 
 namespace obstacle_tracker {
 namespace core {
 
 namespace {
-
-// Unit vectors of the 9 contrast-insensitive directions, k * 20 degrees (k = 0..8). A gradient's
-// sensitive bin is the direction with the largest |dot| (+9 when the dot is negative), i.e. the
-// nearest of 18 directions over 360 degrees (Felzenszwalb et al. 2010, sec. 6.1).
-struct Directions {
-  float cx[9];
-  float cy[9];
-  Directions() {
-    for (int k = 0; k < 9; ++k) {
-      const double a = k * M_PI / 9.0;
-      cx[k] = static_cast<float>(std::cos(a));
-      cy[k] = static_cast<float>(std::sin(a));
-    }
-  }
-};
-
-const Directions& directions() {
-  static const Directions d;
-  return d;
-}
-
-// The centred-difference gradient at pixel x of the channel with the largest magnitude (NC
-// channels, interleaved; the row's ends are replicated); ties keep the first channel.
-template <int NC>
-inline void gradientAt(const uchar* row, const uchar* up, const uchar* down, int w, int x,
-                       float* gdx, float* gdy, float* gm2) {
-  const int xl = (x > 0 ? x - 1 : 0) * NC;
-  const int xr = (x + 1 < w ? x + 1 : w - 1) * NC;
-  float bx = 0.0f, by = 0.0f, bm = -1.0f;
-  for (int c = 0; c < NC; ++c) {
-    const float gx = static_cast<float>(row[xr + c]) - static_cast<float>(row[xl + c]);
-    const float gy = static_cast<float>(down[x * NC + c]) - static_cast<float>(up[x * NC + c]);
-    const float m = gx * gx + gy * gy;
-    const bool better = m > bm;
-    bm = better ? m : bm;
-    bx = better ? gx : bx;
-    by = better ? gy : by;
-  }
-  gdx[x] = bx;
-  gdy[x] = by;
-  gm2[x] = bm;
-}
-
-#if CV_SIMD
-// 8-bit lanes of NC interleaved channels starting at p, one vector per channel.
-template <int NC>
-inline void loadChannels(const uchar* p, cv::v_uint8 (&ch)[NC]) {
-  if constexpr (NC == 1) {
-    ch[0] = cv::vx_load(p);
-  } else {
-    static_assert(NC == 3, "grey or BGR");
-    cv::v_load_deinterleave(p, ch[0], ch[1], ch[2]);
-  }
-}
-
-// a - b of 8-bit lanes as 16-bit lanes, low and high half (exact: |a - b| <= 255).
-inline void difference16(const cv::v_uint8& a, const cv::v_uint8& b, cv::v_int16 (&d)[2]) {
-  cv::v_uint16 a0, a1, b0, b1;
-  cv::v_expand(a, a0, a1);
-  cv::v_expand(b, b0, b1);
-  d[0] = cv::v_reinterpret_as_s16(a0) - cv::v_reinterpret_as_s16(b0);
-  d[1] = cv::v_reinterpret_as_s16(a1) - cv::v_reinterpret_as_s16(b1);
-}
-
-// gradientAt over the pixels [1, end) that have both neighbours in the row, v_uint8::nlanes at a
-// time; returns the first pixel not done. Written by hand because the scalar loop does not
-// vectorise (clamped neighbour indices, a channel select), and it was the largest part of fHOG in
-// `bench_core --benchmark_filter=KcfUpdate` under perf. Differences of 8-bit values and their
-// squares are exact in float, and the channel select keeps the scalar order and strict >, so every
-// pixel gets the scalar loop's bits.
-template <int NC>
-int gradientInterior(const uchar* row, const uchar* up, const uchar* down, int w, float* gdx,
-                     float* gdy, float* gm2) {
-  const int block = cv::v_uint8::nlanes;
-  const int quarter = cv::v_float32::nlanes;
-  int x = 1;
-  for (; x + block <= w - 1; x += block) {
-    cv::v_uint8 left[NC], right[NC], above[NC], below[NC];
-    loadChannels<NC>(row + (x - 1) * NC, left);
-    loadChannels<NC>(row + (x + 1) * NC, right);
-    loadChannels<NC>(up + x * NC, above);
-    loadChannels<NC>(down + x * NC, below);
-    cv::v_int16 gx[NC][2], gy[NC][2];
-    for (int c = 0; c < NC; ++c) {
-      difference16(right[c], left[c], gx[c]);
-      difference16(below[c], above[c], gy[c]);
-    }
-    for (int half = 0; half < 2; ++half) {
-      cv::v_int32 gx32[NC][2], gy32[NC][2];
-      for (int c = 0; c < NC; ++c) {
-        cv::v_expand(gx[c][half], gx32[c][0], gx32[c][1]);
-        cv::v_expand(gy[c][half], gy32[c][0], gy32[c][1]);
-      }
-      for (int q = 0; q < 2; ++q) {
-        cv::v_float32 bx = cv::vx_setzero_f32(), by = cv::vx_setzero_f32();
-        cv::v_float32 bm = cv::vx_setall_f32(-1.0f);
-        for (int c = 0; c < NC; ++c) {
-          const cv::v_float32 fx = cv::v_cvt_f32(gx32[c][q]);
-          const cv::v_float32 fy = cv::v_cvt_f32(gy32[c][q]);
-          const cv::v_float32 m = fx * fx + fy * fy;
-          const cv::v_float32 better = m > bm;
-          bm = cv::v_select(better, m, bm);
-          bx = cv::v_select(better, fx, bx);
-          by = cv::v_select(better, fy, by);
-        }
-        const int at = x + (2 * half + q) * quarter;
-        cv::v_store(gdx + at, bx);
-        cv::v_store(gdy + at, by);
-        cv::v_store(gm2 + at, bm);
-      }
-    }
-  }
-  return x;
-}
-#endif
-
-// gradientAt for every pixel of one row.
-template <int NC>
-void maxGradient(const uchar* row, const uchar* up, const uchar* down, int w, float* gdx,
-                 float* gdy, float* gm2) {
-  int x = 0;
-#if CV_SIMD
-  if (w >= 2) {
-    gradientAt<NC>(row, up, down, w, 0, gdx, gdy, gm2);
-    x = gradientInterior<NC>(row, up, down, w, gdx, gdy, gm2);
-  }
-#endif
-  for (; x < w; ++x) gradientAt<NC>(row, up, down, w, x, gdx, gdy, gm2);
-}
-
-// Per pixel of one row: the nearest of the 18 directions (largest |dot| over the 9 axes, its sign
-// picks the half) into gbin, and gm2 (squared magnitude) replaced by the magnitude. Bins are kept
-// as floats so the loop runs in OpenCV's universal intrinsics.
-void nearestDirections(const float* gdx, const float* gdy, float* gm2, float* gbin, int w) {
-  const Directions& dir = directions();
-  int x = 0;
-#if CV_SIMD
-  {
-    const int lanes = cv::v_float32::nlanes;
-    const cv::v_float32 zero = cv::vx_setzero_f32();
-    for (; x <= w - lanes; x += lanes) {
-      const cv::v_float32 vdx = cv::vx_load(gdx + x);
-      const cv::v_float32 vdy = cv::vx_load(gdy + x);
-      cv::v_float32 best = zero;
-      cv::v_float32 bin = zero;
-      for (int k = 0; k < 9; ++k) {
-        // Two roundings as in the scalar tail, never a fused multiply-add (NEON's may fuse).
-        const cv::v_float32 d = cv::vx_setall_f32(dir.cx[k]) * vdx + cv::vx_setall_f32(dir.cy[k]) * vdy;
-        const cv::v_float32 ad = cv::v_abs(d);
-        const cv::v_float32 better = ad > best;
-        best = cv::v_select(better, ad, best);
-        const cv::v_float32 kb = cv::v_select(d >= zero, cv::vx_setall_f32(static_cast<float>(k)),
-                                              cv::vx_setall_f32(static_cast<float>(k + 9)));
-        bin = cv::v_select(better, kb, bin);
-      }
-      cv::v_store(gbin + x, bin);
-      cv::v_store(gm2 + x, cv::v_sqrt(cv::vx_load(gm2 + x)));
-    }
-  }
-#endif
-  for (; x < w; ++x) {
-    float best = 0.0f;
-    float bin = 0.0f;
-    for (int k = 0; k < 9; ++k) {
-      const float d = dir.cx[k] * gdx[x] + dir.cy[k] * gdy[x];
-      const float ad = std::fabs(d);
-      if (ad > best) {
-        best = ad;
-        bin = static_cast<float>(d >= 0.0f ? k : k + 9);
-      }
-    }
-    gbin[x] = bin;
-    gm2[x] = std::sqrt(gm2[x]);
-  }
-}
 
 // One orientation along a row of `cols` cells: dst[c] = 0.5 sum_k min(h[c] n_k[c], 0.2) with
 // h = ha (+ hb when given, the contrast-insensitive sum), and each term added to texture (4 rows of
@@ -274,13 +100,8 @@ void FhogExtractor::compute(const cv::Mat& patch, int cell, cv::Mat& out) {
     const uchar* row = patch.ptr<uchar>(y);
     const uchar* up = patch.ptr<uchar>(std::max(y - 1, 0));
     const uchar* down = patch.ptr<uchar>(std::min(y + 1, h - 1));
-    // Gradient of the channel with the largest magnitude (replicated border).
-    if (nc == 1) {
-      maxGradient<1>(row, up, down, w, gdx, gdy, gm2);
-    } else {
-      maxGradient<3>(row, up, down, w, gdx, gdy, gm2);
-    }
-    nearestDirections(gdx, gdy, gm2, gbin, w);
+    fhog_detail::maxGradient(row, up, down, w, nc, gdx, gdy, gm2);
+    fhog_detail::nearestDirections(gdx, gdy, gm2, gbin, w);
     accumulateRow(row, y, cell, nc, rows, cols);
   }
   normalise(rows, cols, cell, out);
@@ -313,8 +134,11 @@ void FhogExtractor::accumulateRow(const uchar* row, int y, int cell, int nc, int
   const float vy1 = 1.0f - vy0;
   // hist_ is orientation-major (hist_[o * ncell + cell]) so that normalise() runs along cells.
   const size_t ncell = static_cast<size_t>(rows) * cols;
-  float* h0 = iy >= 0 ? hist_.data() + static_cast<size_t>(iy) * cols : nullptr;
-  float* h1 = iy + 1 < rows ? hist_.data() + static_cast<size_t>(iy + 1) * cols : nullptr;
+  // Pixels past the last whole cell (a patch side that is not a multiple of the cell) vote only
+  // into cells of the grid, as in the paper's reference features; a cell index past the grid
+  // would land in the next row's cells or past the histogram's end.
+  float* h0 = iy >= 0 && iy < rows ? hist_.data() + static_cast<size_t>(iy) * cols : nullptr;
+  float* h1 = iy + 1 >= 0 && iy + 1 < rows ? hist_.data() + static_cast<size_t>(iy + 1) * cols : nullptr;
   for (int x = 0; x < w; ++x) {
     const float mag = gm2[x];  // now the magnitude
     if (mag <= 0.0f) continue;
@@ -322,8 +146,8 @@ void FhogExtractor::accumulateRow(const uchar* row, int y, int cell, int nc, int
     const int ix = col_cell_[x];
     const float vx0 = col_w0_[x];
     const float vx1 = 1.0f - vx0;
-    const bool x0_in = ix >= 0;
-    const bool x1_in = ix + 1 < cols;
+    const bool x0_in = ix >= 0 && ix < cols;
+    const bool x1_in = ix + 1 >= 0 && ix + 1 < cols;
     if (h0 != nullptr) {
       const float m = vy1 * mag;
       if (x0_in) h0[plane + ix] += vx1 * m;
