@@ -136,9 +136,9 @@ void FhogExtractor::accumulateRow(const uchar* row, int y, int cell, int nc, int
   const size_t ncell = static_cast<size_t>(rows) * cols;
   // Pixels past the last whole cell (a patch side that is not a multiple of the cell) vote only
   // into cells of the grid, as in the paper's reference features; a cell index past the grid
-  // would land in the next row's cells or past the histogram's end.
+  // would land in the next row's cells or past the histogram's end. (iy and ix are >= -1.)
   float* h0 = iy >= 0 && iy < rows ? hist_.data() + static_cast<size_t>(iy) * cols : nullptr;
-  float* h1 = iy + 1 >= 0 && iy + 1 < rows ? hist_.data() + static_cast<size_t>(iy + 1) * cols : nullptr;
+  float* h1 = iy + 1 < rows ? hist_.data() + static_cast<size_t>(iy + 1) * cols : nullptr;
   for (int x = 0; x < w; ++x) {
     const float mag = gm2[x];  // now the magnitude
     if (mag <= 0.0f) continue;
@@ -147,7 +147,7 @@ void FhogExtractor::accumulateRow(const uchar* row, int y, int cell, int nc, int
     const float vx0 = col_w0_[x];
     const float vx1 = 1.0f - vx0;
     const bool x0_in = ix >= 0 && ix < cols;
-    const bool x1_in = ix + 1 >= 0 && ix + 1 < cols;
+    const bool x1_in = ix + 1 < cols;
     if (h0 != nullptr) {
       const float m = vy1 * mag;
       if (x0_in) h0[plane + ix] += vx1 * m;
