@@ -21,6 +21,9 @@ void PatchSampler::reserve(int max_width, int max_height, int frame_type, int fr
     shrunk_.create(std::max(2 * max_height + 8, shrunk_.rows), std::max(2 * max_width + 8, shrunk_.cols), frame_type);
   }
   if (static_cast<int>(row_acc_.size()) < frame_width * 3) row_acc_.resize(frame_width * 3);
+  for (std::vector<float>& buffer : rows_) {
+    if (static_cast<int>(buffer.size()) < max_width * 3) buffer.resize(static_cast<size_t>(max_width) * 3);
+  }
 }
 
 void PatchSampler::sample(const cv::Mat& frame, cv::Point2f c, cv::Size2f ws, int tw, int th, cv::Mat& dst) {
@@ -67,32 +70,48 @@ void PatchSampler::sample(const cv::Mat& frame, cv::Point2f c, cv::Size2f ws, in
     col_i0_[u] = std::min(std::max(j0, 0), sw - 1) * nc;
     col_i1_[u] = std::min(std::max(j0 + 1, 0), sw - 1) * nc;
   }
+  // Separable: each source row's horizontal interpolation is computed once and kept while the
+  // patch rows still need it (the values are those of the direct two-row formula, bit for bit),
+  // then the vertical blend runs over contiguous floats.
+  row_index_[0] = row_index_[1] = -1;
+  const int n = tw * nc;
   for (int v = 0; v < th; ++v) {
     const double i = (y0 + (v + 0.5) * fy - oy) / qy - 0.5;
     const double iff = std::floor(i);
     const int i0 = static_cast<int>(iff);
     const float b = static_cast<float>(i - iff);
-    const uchar* r0 = src + static_cast<size_t>(std::min(std::max(i0, 0), sh - 1)) * src_step;
-    const uchar* r1 = src + static_cast<size_t>(std::min(std::max(i0 + 1, 0), sh - 1)) * src_step;
+    const float* top = interpolatedRow(src, src_step, std::min(std::max(i0, 0), sh - 1), tw, nc);
+    const float* bot = interpolatedRow(src, src_step, std::min(std::max(i0 + 1, 0), sh - 1), tw, nc);
     uchar* out = dst.ptr<uchar>(v);
-    if (nc == 1) {
-      bilinearRow<1>(r0, r1, b, tw, out);
-    } else {
-      bilinearRow<3>(r0, r1, b, tw, out);
-    }
+    for (int k = 0; k < n; ++k) out[k] = static_cast<uchar>(top[k] + b * (bot[k] - top[k]) + 0.5f);
   }
 }
 
+// The horizontal interpolation of source row `row`, from the two kept rows when it is one of
+// them (rows are asked for in non-decreasing order, so the older one is replaced).
+const float* PatchSampler::interpolatedRow(const uchar* src, size_t src_step, int row, int width, int nc) {
+  for (int k = 0; k < 2; ++k) {
+    if (row_index_[k] == row) return rows_[k].data();
+  }
+  const int slot = row_index_[0] < row_index_[1] ? 0 : 1;
+  std::vector<float>& buffer = rows_[slot];
+  if (static_cast<int>(buffer.size()) < width * nc) buffer.resize(static_cast<size_t>(width) * nc);
+  const uchar* r = src + static_cast<size_t>(row) * src_step;
+  if (nc == 1) {
+    horizontalRow<1>(r, width, buffer.data());
+  } else {
+    horizontalRow<3>(r, width, buffer.data());
+  }
+  row_index_[slot] = row;
+  return buffer.data();
+}
+
 template <int NC>
-void PatchSampler::bilinearRow(const uchar* r0, const uchar* r1, float b, int width, uchar* out) const {
+void PatchSampler::horizontalRow(const uchar* r, int width, float* out) const {
   for (int u = 0; u < width; ++u) {
     const float a = col_a_[u];
     const int k0 = col_i0_[u], k1 = col_i1_[u];
-    for (int ch = 0; ch < NC; ++ch) {
-      const float top = r0[k0 + ch] + a * (static_cast<float>(r0[k1 + ch]) - r0[k0 + ch]);
-      const float bot = r1[k0 + ch] + a * (static_cast<float>(r1[k1 + ch]) - r1[k0 + ch]);
-      out[u * NC + ch] = static_cast<uchar>(top + b * (bot - top) + 0.5f);
-    }
+    for (int ch = 0; ch < NC; ++ch) out[u * NC + ch] = r[k0 + ch] + a * (static_cast<float>(r[k1 + ch]) - r[k0 + ch]);
   }
 }
 
