@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "obstacle_tracker/core/box_geometry.h"
+#include "obstacle_tracker/core/frame_check.h"
 
 namespace obstacle_tracker {
 namespace core {
@@ -21,12 +22,13 @@ void PatchSampler::reserve(int max_width, int max_height, int frame_type, int fr
     shrunk_.create(std::max(2 * max_height + 8, shrunk_.rows), std::max(2 * max_width + 8, shrunk_.cols), frame_type);
   }
   if (static_cast<int>(row_acc_.size()) < frame_width * 3) row_acc_.resize(frame_width * 3);
-  for (std::vector<float>& buffer : rows_) {
+  for (std::vector<float>& buffer : cached_rows_) {
     if (static_cast<int>(buffer.size()) < max_width * 3) buffer.resize(static_cast<size_t>(max_width) * 3);
   }
 }
 
 void PatchSampler::sample(const cv::Mat& frame, cv::Point2f c, cv::Size2f ws, int tw, int th, cv::Mat& dst) {
+  requireFrame(frame, "PatchSampler::sample");  // the row buffers hold 1 or 3 channels
   const int nc = frame.channels();
   dst.create(th, tw, frame.type());
   if (static_cast<int>(col_a_.size()) < tw) reserve(tw, th, frame.type(), frame.cols);
@@ -70,31 +72,33 @@ void PatchSampler::sample(const cv::Mat& frame, cv::Point2f c, cv::Size2f ws, in
     col_i0_[u] = std::min(std::max(j0, 0), sw - 1) * nc;
     col_i1_[u] = std::min(std::max(j0 + 1, 0), sw - 1) * nc;
   }
-  // Separable: each source row's horizontal interpolation is computed once and kept while the
-  // patch rows still need it (the values are those of the direct two-row formula, bit for bit),
-  // then the vertical blend runs over contiguous floats.
-  row_index_[0] = row_index_[1] = -1;
+  // Separable: a source row serves one to several patch rows (several when the window is
+  // upsampled), so its horizontal interpolation is computed once and kept while they need it;
+  // the vertical blend then runs over contiguous floats.
+  cached_row_index_[0] = cached_row_index_[1] = -1;
   const int n = tw * nc;
   for (int v = 0; v < th; ++v) {
     const double i = (y0 + (v + 0.5) * fy - oy) / qy - 0.5;
     const double iff = std::floor(i);
     const int i0 = static_cast<int>(iff);
     const float b = static_cast<float>(i - iff);
-    const float* top = interpolatedRow(src, src_step, std::min(std::max(i0, 0), sh - 1), tw, nc);
-    const float* bot = interpolatedRow(src, src_step, std::min(std::max(i0 + 1, 0), sh - 1), tw, nc);
+    const int top_row = std::min(std::max(i0, 0), sh - 1), bottom_row = std::min(std::max(i0 + 1, 0), sh - 1);
+    const float* top = interpolatedRow(src, src_step, top_row, top_row, tw, nc);
+    const float* bot = interpolatedRow(src, src_step, bottom_row, top_row, tw, nc);
     uchar* out = dst.ptr<uchar>(v);
     for (int k = 0; k < n; ++k) out[k] = static_cast<uchar>(top[k] + b * (bot[k] - top[k]) + 0.5f);
   }
 }
 
-// The horizontal interpolation of source row `row`, from the two kept rows when it is one of
-// them (rows are asked for in non-decreasing order, so the older one is replaced).
-const float* PatchSampler::interpolatedRow(const uchar* src, size_t src_step, int row, int width, int nc) {
+// The horizontal interpolation of source row `row`: one of the two kept rows when it is there,
+// else computed into the slot that does not hold row `keep` (the other row the current patch row
+// blends).
+const float* PatchSampler::interpolatedRow(const uchar* src, size_t src_step, int row, int keep, int width, int nc) {
   for (int k = 0; k < 2; ++k) {
-    if (row_index_[k] == row) return rows_[k].data();
+    if (cached_row_index_[k] == row) return cached_rows_[k].data();
   }
-  const int slot = row_index_[0] < row_index_[1] ? 0 : 1;
-  std::vector<float>& buffer = rows_[slot];
+  const int slot = cached_row_index_[0] == keep ? 1 : 0;
+  std::vector<float>& buffer = cached_rows_[slot];
   if (static_cast<int>(buffer.size()) < width * nc) buffer.resize(static_cast<size_t>(width) * nc);
   const uchar* r = src + static_cast<size_t>(row) * src_step;
   if (nc == 1) {
@@ -102,7 +106,7 @@ const float* PatchSampler::interpolatedRow(const uchar* src, size_t src_step, in
   } else {
     horizontalRow<3>(r, width, buffer.data());
   }
-  row_index_[slot] = row;
+  cached_row_index_[slot] = row;
   return buffer.data();
 }
 

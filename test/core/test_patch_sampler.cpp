@@ -86,7 +86,8 @@ TEST(PatchSampler, RampsAreInterpolatedAlongBothAxes) {
       sampler.sample(axis == 0 ? rows_ramp : cols_ramp, c, cv::Size2f(window, window), side, side, patch);
       for (int k = 0; k < side; ++k) {
         // Patch pixel k's centre is at frame coordinate c - window / 2 + (k + 0.5) scale - 0.5.
-        const double expected = 2.0 * (c.x - 0.5 * window + (k + 0.5) * scale - 0.5);
+        const float centre = axis == 0 ? c.y : c.x;
+        const double expected = 2.0 * (centre - 0.5 * window + (k + 0.5) * scale - 0.5);
         const int value = axis == 0 ? patch.at<uchar>(k, side / 2) : patch.at<uchar>(side / 2, k);
         EXPECT_NEAR(value, expected, 1.0) << "scale " << scale << " axis " << axis << " pixel " << k;
       }
@@ -104,5 +105,10 @@ TEST(PatchSampler, OutsideTheFrameTheBorderIsReplicated) {
   sampler.sample(frame, cv::Point2f(0.0f, 20.0f), cv::Size2f(20.0f, 20.0f), 20, 20, patch);
   for (int v = 0; v < 20; ++v) {
     for (int u = 0; u < 9; ++u) EXPECT_EQ(patch.at<uchar>(v, u), frame.at<uchar>(10 + v, 0)) << u << "," << v;
+  }
+  // One whose lower half lies below it: its lower patch rows repeat the last row.
+  sampler.sample(frame, cv::Point2f(20.0f, 40.0f), cv::Size2f(20.0f, 20.0f), 20, 20, patch);
+  for (int v = 11; v < 20; ++v) {
+    for (int u = 0; u < 20; ++u) EXPECT_EQ(patch.at<uchar>(v, u), frame.at<uchar>(39, 10 + u)) << u << "," << v;
   }
 }

@@ -31,15 +31,14 @@ class PatchSampler {
   void shrinkBox(const cv::Mat& frame, int rx0, int ry0, int nw, int nh, int qx, int qy);
   template <int NC>
   void horizontalRow(const uchar* r, int width, float* out) const;
-  const float* interpolatedRow(const uchar* src, size_t src_step, int row, int width, int nc);
+  const float* interpolatedRow(const uchar* src, size_t src_step, int row, int keep, int width, int nc);
 
   cv::Mat shrunk_;  // box-shrunk frame region for large windows
   std::vector<float> col_a_;
   std::vector<int> col_i0_, col_i1_, row_acc_;
-  // The horizontal pass of the two source rows last used (each source row serves one to several
-  // patch rows, so it is interpolated once): their values and their row indices (-1: none).
-  std::vector<float> rows_[2];
-  int row_index_[2] = {-1, -1};
+  // The horizontal pass of the two source rows last used, and their row indices (-1: none).
+  std::vector<float> cached_rows_[2];
+  int cached_row_index_[2] = {-1, -1};
 };
 
 }  // namespace core
