@@ -109,7 +109,7 @@ Pipeline::Impl::Track& Pipeline::Impl::newTrack(const cv::Mat& frame, double sta
   t->result = firstAnswer(box);
   t->gate = Track::FilterGate();
   t->looming.start(frame, stamp, box);
-  t->refs = Track::References{contrast.measure(frame, box)};
+  t->refs = Track::References{contrast.read(frame, box)};
   t->verification = Track::Verification();
   tracks.push_back(std::move(t));
   return *tracks.back();
@@ -118,13 +118,19 @@ Pipeline::Impl::Track& Pipeline::Impl::newTrack(const cv::Mat& frame, double sta
 // A track started by auto-initialisation: watched until it moves like an obstacle.
 Pipeline::Impl::Track& Pipeline::Impl::newAutoTrack(const cv::Mat& frame, double stamp, const cv::Rect2f& box) {
   Track& t = newTrack(frame, stamp, box);
-  if (params.auto_init_verify_frames > 0 && params.auto_init_min_motion > 0.0) {
-    t.verification.verified = false;
-    t.verification.start_centre = boxCentre(box);
-    t.verification.start_background = autoinit.backgroundMotion();
-    t.verification.start_log_size = 0.5f * std::log(std::max(1.0f, box.area()));
-  }
+  beginVerification(t, box);
   return t;
+}
+
+// The track on box is not an obstacle until verify() has seen it move (or grow) like one; with
+// the verification switched off it is at once.
+void Pipeline::Impl::beginVerification(Track& t, const cv::Rect2f& box) {
+  t.verification = Track::Verification();
+  if (params.auto_init_verify_frames <= 0 || params.auto_init_min_motion <= 0.0) return;
+  t.verification.verified = false;
+  t.verification.start_centre = boxCentre(box);
+  t.verification.start_background = autoinit.backgroundMotion();
+  t.verification.start_log_size = 0.5f * std::log(std::max(1.0f, box.area()));
 }
 
 void Pipeline::Impl::report() {

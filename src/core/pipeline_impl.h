@@ -37,8 +37,8 @@
 // against the model (a split) starts a new track when there is room.
 //
 // Reported confidence = KcfResult::confidence (mapping in kcf.h) of the frame's final answer,
-// capped at learn_threshold while re-detecting and while the box has lost the contrasted object
-// the filter started on (target_contrast.h); 0 when lost.
+// capped at learn_threshold while re-detecting (a box that lost the contrasted object the filter
+// started on, target_contrast.h, counts as a failed frame); 0 when lost.
 #pragma once
 
 #include <algorithm>
@@ -77,6 +77,8 @@ constexpr float kVerifyMinImageMotion = 2.0f;  // verify(): working px (auto_ini
 constexpr double kVerifyStillShare = 0.5;    // verify(): a box with this share of still pixels is an overlay
 constexpr double kVerifyMaxLineCoherence = 0.85;  // verify(): gradients this aligned are a line, no motion evidence
 constexpr float kMaxResize = 1.5f;           // a re-detected box side is within 1/1.5..1.5 x the last
+constexpr float kReacquireContrastShare = 0.5f;  // contrastedCandidate(): of the reference's contrast
+constexpr float kReacquireMinPrior = 0.1f;       // contrastedCandidate(): a candidate's least prior
 
 // Keeps the box's centre inside the frame (the box may still stick out).
 inline cv::Rect2f clampCentre(const cv::Rect2f& b, const cv::Size& frame) {
@@ -133,9 +135,11 @@ struct Pipeline::Impl {
     };
     // What a frame's answer is judged against: the contrast of the box the filter (re)started on
     // (TargetContrast), and the running means of the peak and PSR on good frames (LMCF, Wang et
-    // al. CVPR 2017).
+    // al. CVPR 2017). lost_object: since that (re)start, an answer's box lost the contrasted
+    // object (the model has followed the background, so it cannot verify a re-detection alone).
     struct References {
-      float contrast = 0.0f;
+      TargetContrast::Reading contrast;
+      bool lost_object = false;
       float peak = 0.0f, psr = 0.0f;
       int count = 0;  // good frames in the means
     };
@@ -212,6 +216,7 @@ struct Pipeline::Impl {
   void beginFrame(const cv::Mat& frame, double stamp, const char* who);
   Track& newTrack(const cv::Mat& frame, double stamp, const cv::Rect2f& box);
   Track& newAutoTrack(const cv::Mat& frame, double stamp, const cv::Rect2f& box);
+  void beginVerification(Track& t, const cv::Rect2f& box);
   void report();
   const std::vector<Obstacle>& run(const cv::Mat& frame, double stamp, const cv::Rect2f* start_box);
 
@@ -220,7 +225,9 @@ struct Pipeline::Impl {
   cv::Rect2f predict(const Track& t, double stamp) const;
   bool redetect(Track& t, const cv::Mat& frame, double stamp);
   void gatherCandidates(const Track& t, const cv::Mat& frame, const cv::Rect2f& pred);
-  int chooseCandidate(Track& t, const cv::Mat& frame, KcfResult& chosen);
+  int chooseCandidate(Track& t, const cv::Mat& frame, KcfResult& chosen, bool& by_contrast);
+  int contrastedCandidate(Track& t, const cv::Mat& frame, KcfResult& chosen);
+  bool lostObject(Track& t, const cv::Mat& frame, const cv::Rect2f& box);
   void noteSplit(int best);
   bool restartOn(Track& t, const cv::Mat& frame, double stamp, const cv::Rect2f& region,
                  const KcfResult& verified_result);

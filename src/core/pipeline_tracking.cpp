@@ -51,12 +51,17 @@ cv::Rect2f Pipeline::Impl::predict(const Track& t, double stamp) const {
 bool Pipeline::Impl::redetect(Track& t, const cv::Mat& frame, double stamp) {
   gatherCandidates(t, frame, predict(t, stamp));
   KcfResult chosen;
-  const int best = chooseCandidate(t, frame, chosen);
+  bool by_contrast = false;
+  const int best = chooseCandidate(t, frame, chosen, by_contrast);
   // A split: with room for more tracks, a clearly separated, strong salient region that is
   // not the accepted one becomes a new track (handled by the caller after the loop).
   if (params.max_obstacles > 1) noteSplit(best);
   if (best < 0) return false;
-  return restartOn(t, frame, stamp, candidates[static_cast<std::size_t>(best)].box, chosen);
+  if (!restartOn(t, frame, stamp, candidates[static_cast<std::size_t>(best)].box, chosen)) return false;
+  // Taken on contrast alone, the region is a new detection: an obstacle once it has moved like
+  // one (verify()), as an auto-started track is; until then its confidence stays below 0.5.
+  if (by_contrast) beginVerification(t, t.status.box);
+  return true;
 }
 
 // The salient regions in the search window around the prediction `pred`, each with a prior from
@@ -98,9 +103,10 @@ void Pipeline::Impl::gatherCandidates(const Track& t, const cv::Mat& frame, cons
             [](const Candidate& a, const Candidate& b) { return a.prior > b.prior; });
 }
 
-// The candidate that verifies best against the filter's model (KcfTracker::evaluate), or the
-// solo rule's; -1 when none. `chosen` is its verification.
-int Pipeline::Impl::chooseCandidate(Track& t, const cv::Mat& frame, KcfResult& chosen) {
+// The candidate that verifies best against the filter's model (KcfTracker::evaluate), or, when
+// the model has followed the background, the contrasted one, or the solo rule's; -1 when none.
+// `chosen` is its verification; by_contrast tells whether the model was left out.
+int Pipeline::Impl::chooseCandidate(Track& t, const cv::Mat& frame, KcfResult& chosen, bool& by_contrast) {
   const std::size_t verify =
       std::min<std::size_t>(candidates.size(), static_cast<std::size_t>(params.redetect_candidates));
   // A new region must match the model about as well as the target usually does (a background
@@ -120,6 +126,14 @@ int Pipeline::Impl::chooseCandidate(Track& t, const cv::Mat& frame, KcfResult& c
       chosen = r;
     }
   }
+  by_contrast = false;
+  if (best < 0 && t.refs.lost_object) {
+    best = contrastedCandidate(t, frame, chosen);
+    if (best >= 0) {
+      by_contrast = true;
+      return best;
+    }
+  }
   // The paper's re-detection trusts saliency alone. Verification against the model protects
   // from distractors but fails when the target's surroundings change (a drone crossing from
   // sky into a dark ground band: the model, learned on sky, answers 0.08-0.10 there against
@@ -136,6 +150,28 @@ int Pipeline::Impl::chooseCandidate(Track& t, const cv::Mat& frame, KcfResult& c
     chosen = first_result;
   }
   return best;
+}
+
+// A model that has followed the background learned the background (the filter kept learning
+// on the frames before the box's contrast told), and a target that flew on answers it no better
+// than clutter: verification against it fails on the very frames that need a re-detection. What
+// still tells the object is what the loss was measured with: the salient region with the best
+// prior (saliency, distance to the prediction, size; at least kReacquireMinPrior, so that a thin
+// pole far from where the object left is not taken) whose contrast (TargetContrast) is at least
+// kReacquireContrastShare of the contrast the filter started on, and above
+// TargetContrast::kMinReference. Clutter passes that too (a mast's lattice, runway markings), so
+// the caller reports the track as unverified until it moves like an obstacle.
+int Pipeline::Impl::contrastedCandidate(Track& t, const cv::Mat& frame, KcfResult& chosen) {
+  const float need = std::max(TargetContrast::kMinReference, kReacquireContrastShare * t.refs.contrast.ratio);
+  const std::size_t verify =
+      std::min<std::size_t>(candidates.size(), static_cast<std::size_t>(params.redetect_candidates));
+  for (std::size_t i = 0; i < verify; ++i) {
+    if (candidates[i].prior < kReacquireMinPrior) break;  // sorted: none of the rest is plausible
+    if (contrast.measure(frame, candidates[i].box) < need) continue;
+    chosen = t.kcf.evaluate(frame, candidates[i].box);
+    return static_cast<int>(i);
+  }
+  return -1;
 }
 
 void Pipeline::Impl::noteSplit(int best) {
@@ -164,7 +200,8 @@ bool Pipeline::Impl::restartOn(Track& t, const cv::Mat& frame, double stamp, con
   }
   if (!usableBox(box, frame_size)) return false;
   t.kcf.init(frame, box);
-  t.refs.contrast = contrast.measure(frame, box);
+  t.refs.contrast = contrast.read(frame, box);
+  t.refs.lost_object = false;
   t.looming.restart(frame, stamp, box);
   t.result = verified_result;
   t.result.box = box;
@@ -254,6 +291,16 @@ void Pipeline::Impl::bridgeDroppedFrames(Track& t, const cv::Mat& frame) {
   t.kcf.shiftSearch(boxCentre(moved) - boxCentre(box));
 }
 
+// A peak on a box that no longer holds the contrasted object it started on is the filter
+// following the background (target_contrast.h): the frame fails like a low peak, the track
+// re-detects around where the object was last seen, and the mark stays until the next restart.
+bool Pipeline::Impl::lostObject(Track& t, const cv::Mat& frame, const cv::Rect2f& box) {
+  if (t.refs.contrast.ratio < TargetContrast::kMinReference) return false;  // nothing to lose
+  if (!TargetContrast::lost(t.refs.contrast, contrast.read(frame, box))) return false;
+  t.refs.lost_object = true;
+  return true;
+}
+
 void Pipeline::Impl::step(Track& t, const cv::Mat& frame, double stamp) {
   ++t.status.age;
   bridgeDroppedFrames(t, frame);
@@ -265,16 +312,13 @@ void Pipeline::Impl::step(Track& t, const cv::Mat& frame, double stamp) {
   // A box mostly outside the frame is an obstacle leaving the view: the filter's answer there
   // correlates mostly padding and background, so it does not count as tracking.
   const float needed = t.status.state == TrackState::kTracking ? goodPeak(t) : acceptPeak(t);
-  if (r.peak >= needed && usableBox(r.box, frame_size) && inFrameFraction(r.box) >= kMinInFrame) {
+  const bool usable = usableBox(r.box, frame_size);
+  // Checked whatever the peak: a low peak on a box that lost the object also marks the model.
+  const bool lost_object = usable && lostObject(t, frame, r.box);
+  if (r.peak >= needed && usable && inFrameFraction(r.box) >= kMinInFrame && !lost_object) {
     updateRefs(t, r);
     t.looming.track(frame, stamp, r.box);
     acceptGood(t, r.box, stamp);
-    // A peak on a box that no longer holds the contrasted object it started on is the filter
-    // following the background (target_contrast.h): reported as no better than re-detecting.
-    if (t.refs.contrast >= TargetContrast::kMinReference &&
-        TargetContrast::lost(t.refs.contrast, contrast.measure(frame, r.box))) {
-      t.result.confidence = std::min(t.result.confidence, static_cast<float>(params.learn_threshold));
-    }
     return;
   }
   t.status.state = TrackState::kRedetecting;

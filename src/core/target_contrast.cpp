@@ -41,9 +41,9 @@ int sampleRing(const cv::Mat& frame, const cv::Rect& window, const cv::Rect& ins
 
 }  // namespace
 
-float TargetContrast::measure(const cv::Mat& frame, const cv::Rect2f& box) const {
-  if (frame.empty() || (frame.type() != CV_8UC1 && frame.type() != CV_8UC3)) return kUnknown;
-  if (!boxHasPixels(box)) return kUnknown;
+TargetContrast::Reading TargetContrast::read(const cv::Mat& frame, const cv::Rect2f& box) const {
+  if (frame.empty() || (frame.type() != CV_8UC1 && frame.type() != CV_8UC3)) return Reading();
+  if (!boxHasPixels(box)) return Reading();
   const float fw = static_cast<float>(frame.cols), fh = static_cast<float>(frame.rows);
   auto clampX = [&](float v) { return static_cast<int>(std::min(std::max(v, 0.0f), fw)); };
   auto clampY = [&](float v) { return static_cast<int>(std::min(std::max(v, 0.0f), fh)); };
@@ -51,7 +51,7 @@ float TargetContrast::measure(const cv::Mat& frame, const cv::Rect2f& box) const
   const cv::Rect window = grownPixelRect(box, margin, frame.size());
   const cv::Rect inside(cv::Point(clampX(std::round(box.x)), clampY(std::round(box.y))),
                         cv::Point(clampX(std::round(box.x + box.width)), clampY(std::round(box.y + box.height))));
-  if (inside.area() <= 0) return kUnknown;
+  if (inside.area() <= 0) return Reading();
   // The ring is sampled on a grid of the window, the box on its own grid (an object thinner than
   // the ring's step must not fall between sampled rows).
   const int ring_step = std::max(1, (std::max(window.width, window.height) + kMaxSamples - 1) / kMaxSamples);
@@ -62,7 +62,7 @@ float TargetContrast::measure(const cv::Mat& frame, const cv::Rect2f& box) const
   const int ring_count = sampleRing(frame, window, inside, ring_step, [&](const uchar* px) {
     for (int ch = 0; ch < channels; ++ch) ++ring_levels[static_cast<std::size_t>(ch)][px[ch]];
   });
-  if (ring_count < kMinRingPixels) return kUnknown;
+  if (ring_count < kMinRingPixels) return Reading();
   std::array<int, 3> bg{0, 0, 0};
   for (int ch = 0; ch < channels; ++ch) {
     const auto c = static_cast<std::size_t>(ch);
@@ -84,11 +84,15 @@ float TargetContrast::measure(const cv::Mat& frame, const cv::Rect2f& box) const
   }
   const double noise = std::max(1.0, kMadToSigma * histogramGroupedMedian(ring_hist, ring_count));
   const int rank = std::max(kSignalRank, box_count / kSignalShareInverse);
-  return static_cast<float>(histogramRankFromTop(box_hist, rank) / noise);
+  Reading reading;
+  reading.ratio = static_cast<float>(histogramRankFromTop(box_hist, rank) / noise);
+  reading.noise = static_cast<float>(noise);
+  return reading;
 }
 
-bool TargetContrast::lost(float reference, float current) {
-  return reference >= kMinReference && current != kUnknown && current < kFloor;
+bool TargetContrast::lost(const Reading& reference, const Reading& current) {
+  return reference.ratio >= kMinReference && current.ratio != kUnknown && current.ratio < kFloor &&
+         current.noise <= kMaxNoiseRise * reference.noise;
 }
 
 }  // namespace core

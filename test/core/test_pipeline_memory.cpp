@@ -33,7 +33,12 @@ constexpr int kFrames = 40;
 constexpr int kWarmup = 10;  // frames after the start before counting
 constexpr double kBudgetBytes = 30.0 * 1024.0 * 1024.0;
 
-// 1280x720 "multi" frames and the three target boxes of frame 0, rendered once.
+// 1280x720 "multi" frames and the three target boxes of frame 0, rendered once. Seed 9: its three
+// filters follow their targets over these frames. On most seeds the flapping bird leaves its
+// filter within a few frames; its track then re-detects (the saliency window's buffers grow
+// the first time a larger window is searched) or, re-acquired on contrast alone, is unconfirmed,
+// and an unconfirmed track runs the AutoInitializer, which allocates as it does while searching
+// (pipeline_search.cpp). Neither is the steady state this test measures.
 struct Clip {
   std::vector<cv::Mat> frames;
   std::vector<cv::Rect2f> boxes;
@@ -43,7 +48,7 @@ struct Clip {
 const Clip& clip() {
   static const Clip c = [] {
     Clip k;
-    os::SceneGenerator gen = os::makeScenario("multi", 1, kFrames, cv::Size(1280, 720));
+    os::SceneGenerator gen = os::makeScenario("multi", 9, kFrames, cv::Size(1280, 720));
     k.fps = gen.fps();
     k.frames.resize(kFrames);
     os::FrameTruth truth;
@@ -53,6 +58,13 @@ const Clip& clip() {
     return k;
   }();
   return c;
+}
+
+// Obstacles that are tracked (not re-detecting) and confirmed (no AutoInitializer runs beside them).
+int trackedAndConfirmed(const std::vector<oc::Obstacle>& out) {
+  int n = 0;
+  for (const auto& o : out) n += o.state == oc::TrackState::kTracking && o.confirmed ? 1 : 0;
+  return n;
 }
 
 int alive(const std::vector<oc::Obstacle>& out) {
@@ -93,8 +105,10 @@ void expectNoAllocationWithThreeTracks(double (*stamp)(int, double)) {
     g_counting = true;
     const auto& out = pipeline.process(c.frames[static_cast<std::size_t>(i)], stamp(i, c.fps));
     g_counting = false;
-    // The measurement is about three live tracks: the scene keeps them all (no loss, no merge).
+    // The measurement is about three tracks following their targets: the scene keeps them all
+    // (no loss, no merge, no re-detection, all confirmed).
     ASSERT_EQ(alive(out), 3) << "frame " << i;
+    ASSERT_EQ(trackedAndConfirmed(out), 3) << "frame " << i;
     total += g_allocations.load();
     most = std::max(most, g_allocations.load());
     largest = std::max(largest, g_largest.load());

@@ -2,7 +2,8 @@
 //
 // TargetContrast (target_contrast.h): known answers for a small target against sky noise, a box
 // on plain sky, one hot pixel, a thin object, a box that covers the view, a colour-only target, a
-// near obstacle at 1080p (sampled grids), no allocation, the lost() rule and bad input.
+// near obstacle at 1080p (sampled grids), an object in front of clutter, no allocation, the lost()
+// rule and bad input.
 #include <cmath>
 #include <limits>
 
@@ -29,13 +30,43 @@ TEST(TargetContrast, ASmallTargetStandsOutOfTheSkyAndAnEmptyBoxDoesNot) {
   // A 5x3 px aircraft 60 levels above the sky in a 17x13 box (annotated boxes keep a margin).
   cv::rectangle(frame, cv::Rect(156, 118, 5, 3), cv::Scalar(150), cv::FILLED);
   const core::TargetContrast contrast;
-  const float on_target = contrast.measure(frame, cv::Rect2f(150.0f, 113.0f, 17.0f, 13.0f));
-  const float on_sky = contrast.measure(frame, cv::Rect2f(60.0f, 60.0f, 17.0f, 13.0f));
+  const core::TargetContrast::Reading on_target = contrast.read(frame, cv::Rect2f(150.0f, 113.0f, 17.0f, 13.0f));
+  const core::TargetContrast::Reading on_sky = contrast.read(frame, cv::Rect2f(60.0f, 60.0f, 17.0f, 13.0f));
   // Noise sigma 3: the target is about 20 sigma out, the empty box's 4th largest pixel ~2-3.
-  EXPECT_GT(on_target, 12.0f);
-  EXPECT_LT(on_sky, core::TargetContrast::kFloor);
+  EXPECT_GT(on_target.ratio, 12.0f);
+  EXPECT_LT(on_sky.ratio, core::TargetContrast::kFloor);
+  // The ring's noise is the sky's sigma (MAD of the contrasts to the median, to a grey level).
+  EXPECT_NEAR(on_target.noise, 3.0f, 1.0f);
+  EXPECT_NEAR(on_sky.noise, 3.0f, 1.0f);
   EXPECT_TRUE(core::TargetContrast::lost(on_target, on_sky));
   EXPECT_FALSE(core::TargetContrast::lost(on_target, on_target));
+}
+
+TEST(TargetContrast, AnObjectInFrontOfClutterIsNotLost) {
+  // An aircraft on plain sky, then the same aircraft in front of a mottled hillside that fills
+  // its box's ring: the ratio falls under the floor because the ring's noise rose, not
+  // because the box lost the aircraft. The same box on the same clutter without the aircraft is
+  // not lost either (nothing can be told there), while a box on plain sky again is.
+  const core::TargetContrast contrast;
+  const cv::Rect2f box(140.0f, 110.0f, 40.0f, 20.0f);
+  cv::Mat sky = skyFrame(cv::Size(320, 240), 150.0, 2.0);
+  cv::rectangle(sky, cv::Rect(145, 115, 30, 10), cv::Scalar(220), cv::FILLED);
+  const core::TargetContrast::Reading start = contrast.read(sky, box);
+  ASSERT_GT(start.ratio, core::TargetContrast::kMinReference);
+  // The hillside: 4 x 4 px patches of grey levels spread evenly over 40..200.
+  cv::Mat patches(60, 80, CV_8UC1);
+  cv::RNG rng(7);
+  rng.fill(patches, cv::RNG::UNIFORM, 40, 201);
+  cv::Mat hill;
+  cv::resize(patches, hill, cv::Size(320, 240), 0.0, 0.0, cv::INTER_NEAREST);
+  cv::Mat in_front = hill.clone();
+  cv::rectangle(in_front, cv::Rect(145, 115, 30, 10), cv::Scalar(220), cv::FILLED);
+  const core::TargetContrast::Reading cluttered = contrast.read(in_front, box);
+  EXPECT_LT(cluttered.ratio, core::TargetContrast::kFloor);
+  EXPECT_GT(cluttered.noise, core::TargetContrast::kMaxNoiseRise * start.noise);
+  EXPECT_FALSE(core::TargetContrast::lost(start, cluttered));
+  EXPECT_FALSE(core::TargetContrast::lost(start, contrast.read(hill, box)));
+  EXPECT_TRUE(core::TargetContrast::lost(start, contrast.read(skyFrame(cv::Size(320, 240), 150.0, 2.0, 9), box)));
 }
 
 TEST(TargetContrast, OneHotPixelIsNotAnObject) {
@@ -65,11 +96,11 @@ TEST(TargetContrast, ABoxThatCoversTheViewIsUnknownNotLost) {
   cv::Mat frame = skyFrame(cv::Size(320, 240), 140.0, 3.0);
   cv::circle(frame, cv::Point(160, 120), 30, cv::Scalar(40), cv::FILLED);
   core::TargetContrast contrast;
-  const float start = contrast.measure(frame, cv::Rect2f(125.0f, 85.0f, 70.0f, 70.0f));
-  EXPECT_GT(start, core::TargetContrast::kMinReference);
+  const core::TargetContrast::Reading start = contrast.read(frame, cv::Rect2f(125.0f, 85.0f, 70.0f, 70.0f));
+  EXPECT_GT(start.ratio, core::TargetContrast::kMinReference);
   cv::circle(frame, cv::Point(160, 120), 400, cv::Scalar(40), cv::FILLED);
-  const float close = contrast.measure(frame, cv::Rect2f(-40.0f, -30.0f, 400.0f, 300.0f));
-  EXPECT_EQ(close, core::TargetContrast::kUnknown);
+  const core::TargetContrast::Reading close = contrast.read(frame, cv::Rect2f(-40.0f, -30.0f, 400.0f, 300.0f));
+  EXPECT_EQ(close.ratio, core::TargetContrast::kUnknown);
   EXPECT_FALSE(core::TargetContrast::lost(start, close));
 }
 
@@ -114,13 +145,19 @@ TEST(TargetContrast, NoHeapAllocation) {
 
 TEST(TargetContrast, LostOnlyWhenNothingStandsOutOfAnObjectThatDidAtItsStart) {
   using C = core::TargetContrast;
-  EXPECT_FALSE(C::lost(40.0f, 8.0f));               // faded to a fifth, still well out of the noise
-  EXPECT_TRUE(C::lost(40.0f, 2.0f));                // nothing there
-  EXPECT_TRUE(C::lost(C::kMinReference, C::kFloor - 0.01f));
-  EXPECT_FALSE(C::lost(C::kMinReference, C::kFloor));
-  EXPECT_FALSE(C::lost(C::kMinReference - 0.01f, 0.0f));  // started faint or textured: no check
-  EXPECT_FALSE(C::lost(C::kUnknown, 0.0f));         // unknown at the start (box at the frame's edge)
-  EXPECT_FALSE(C::lost(40.0f, C::kUnknown));        // unknown now (box covers the view)
+  // Readings with the same ring noise, unless said otherwise.
+  const auto at = [](float ratio, float noise = 3.0f) { return C::Reading{ratio, noise}; };
+  EXPECT_FALSE(C::lost(at(40.0f), at(8.0f)));               // faded to a fifth, still well out of the noise
+  EXPECT_TRUE(C::lost(at(40.0f), at(2.0f)));                // nothing there
+  EXPECT_TRUE(C::lost(at(C::kMinReference), at(C::kFloor - 0.01f)));
+  EXPECT_FALSE(C::lost(at(C::kMinReference), at(C::kFloor)));
+  EXPECT_FALSE(C::lost(at(C::kMinReference - 0.01f), at(0.0f)));  // started faint or textured: no check
+  EXPECT_FALSE(C::lost(at(C::kUnknown, 0.0f), at(0.0f)));   // unknown at the start (box at the frame's edge)
+  EXPECT_FALSE(C::lost(at(40.0f), at(C::kUnknown, 0.0f)));  // unknown now (box covers the view)
+  // The ring's noise rose: clutter behind the object, where a low ratio tells nothing.
+  EXPECT_TRUE(C::lost(at(40.0f, 3.0f), at(2.0f, 3.0f * C::kMaxNoiseRise)));
+  EXPECT_FALSE(C::lost(at(40.0f, 3.0f), at(2.0f, 3.0f * C::kMaxNoiseRise + 0.1f)));
+  EXPECT_TRUE(C::lost(at(40.0f, 3.0f), at(2.0f, 1.0f)));    // calmer surroundings: still lost
 }
 
 TEST(TargetContrast, BadInputIsUnknown) {

@@ -24,9 +24,12 @@ namespace core {
 // sky learns mostly sky; under a pan it can follow the sky's texture (clouds, the sensor's fixed
 // pattern) with a perfect peak while the target flies on. The peak cannot tell; the box's
 // contrast can: lost() is true when a box that started on a contrasted object (at least
-// kMinReference) holds nothing out of the noise any more (under kFloor), and the reported
-// confidence is then capped (pipeline_tracking.cpp). An object whose contrast merely fades stays
-// found; unknown is never lost.
+// kMinReference) holds nothing out of the noise any more (under kFloor), and the pipeline then
+// takes the frame as failed and re-detects (pipeline_tracking.cpp). An object whose contrast
+// merely fades stays found; unknown is never lost. Nor is a ratio that fell because the ring's
+// noise rose beyond kMaxNoiseRise x the reference's: the object moved in front of clutter (an
+// aircraft taxiing past a hillside and runway markings, whose ring noise rose sevenfold while it
+// stayed in its box), where a low ratio says nothing about the box.
 class TargetContrast {
  public:
   static constexpr float kUnknown = -1.0f;
@@ -37,9 +40,16 @@ class TargetContrast {
   static constexpr int kMaxBoxSamples = 512;
   static constexpr float kMinReference = 6.0f;
   static constexpr float kFloor = 3.0f;
+  static constexpr float kMaxNoiseRise = 2.0f;
 
-  float measure(const cv::Mat& frame, const cv::Rect2f& box) const;
-  static bool lost(float reference, float current);
+  // A measurement: the ratio, and the ring's noise it divides by (grey levels; 0 when unknown).
+  struct Reading {
+    float ratio = kUnknown;
+    float noise = 0.0f;
+  };
+  Reading read(const cv::Mat& frame, const cv::Rect2f& box) const;
+  float measure(const cv::Mat& frame, const cv::Rect2f& box) const { return read(frame, box).ratio; }
+  static bool lost(const Reading& reference, const Reading& current);
 };
 
 }  // namespace core
