@@ -126,11 +126,32 @@ Pipeline::Impl::Track& Pipeline::Impl::newAutoTrack(const cv::Mat& frame, double
 // the verification switched off it is at once.
 void Pipeline::Impl::beginVerification(Track& t, const cv::Rect2f& box) {
   t.verification = Track::Verification();
-  if (params.auto_init_verify_frames <= 0 || params.auto_init_min_motion <= 0.0) return;
+  if (!verificationOn()) return;
   t.verification.verified = false;
   t.verification.start_centre = boxCentre(box);
   t.verification.start_background = autoinit.backgroundMotion();
   t.verification.start_log_size = 0.5f * std::log(std::max(1.0f, box.area()));
+}
+
+// A track re-acquired on contrast alone (step()): unverified again. Its start is placed at the
+// next auto-initialisation frame (placeVerificationStart), where the background's motion up to
+// that frame is known. A track that was already unverified keeps its count of checks and its
+// provisional mark (re-acquisition must not reset its turn to give way), only its start moves,
+// the box having jumped.
+void Pipeline::Impl::restartVerification(Track& t) {
+  if (t.verification.verified) {
+    t.verification = Track::Verification();
+    t.verification.verified = false;
+  }
+  t.verification.start_pending = true;
+}
+
+void Pipeline::Impl::placeVerificationStart(Track& t) {
+  if (!t.verification.start_pending) return;
+  t.verification.start_pending = false;
+  t.verification.start_centre = boxCentre(t.status.box);
+  t.verification.start_background = autoinit.backgroundMotion();
+  t.verification.start_log_size = 0.5f * std::log(std::max(1.0f, t.status.box.area()));
 }
 
 void Pipeline::Impl::report() {

@@ -8,9 +8,10 @@
 // obstacles and looming (looming.h, docs/looming.md).
 //
 // Per track, per frame:
-//   tracking     KcfTracker::update. peak >= peak_threshold: the new box is kept. Otherwise the
-//                track re-detects in the same frame. After dropped frames the search may start
-//                at the constant-velocity prediction instead (bridgeDroppedFrames).
+//   tracking     KcfTracker::update. peak >= peak_threshold and a box that still holds the
+//                contrasted object the filter started on (target_contrast.h): the new box is
+//                kept. Otherwise the track re-detects in the same frame. After dropped frames the
+//                search may start at the constant-velocity prediction instead (bridgeDroppedFrames).
 //   re-detecting the filter's own answer (update without learning) counts when its peak passes the
 //                re-detection test; otherwise the candidates are the salient
 //                regions inside search_window_scale x the box around the prediction (constant
@@ -21,7 +22,10 @@
 //                accepted: the filter restarts (init) on its box, so the box takes the object's
 //                current size and shape. After a failed frame, a candidate alone in the window
 //                (high prior, no rival) is accepted at redetect_solo_peak x the peak threshold
-//                (the target's surroundings changed under the model). A frame without an
+//                (the target's surroundings changed under the model). Once a box has lost the
+//                object since the last restart (the model followed the background), a candidate
+//                the model does not verify may be taken on its own contrast; the track is then
+//                unverified, as an auto-started one. A frame without an
 //                accepted candidate is a failure; more than max_redetect_failures consecutive failures end the track (reported once
 //                with state kLost, then removed).
 //   searching    while there is room for a track, AutoInitializer is fed every
@@ -38,7 +42,8 @@
 //
 // Reported confidence = KcfResult::confidence (mapping in kcf.h) of the frame's final answer,
 // capped at learn_threshold while re-detecting (a box that lost the contrasted object the filter
-// started on, target_contrast.h, counts as a failed frame); 0 when lost.
+// started on, target_contrast.h, counts as a failed frame), at kUnconfirmedConfidenceCap while
+// unverified; 0 when lost.
 #pragma once
 
 #include <algorithm>
@@ -135,8 +140,9 @@ struct Pipeline::Impl {
     };
     // What a frame's answer is judged against: the contrast of the box the filter (re)started on
     // (TargetContrast), and the running means of the peak and PSR on good frames (LMCF, Wang et
-    // al. CVPR 2017). lost_object: since that (re)start, an answer's box lost the contrasted
-    // object (the model has followed the background, so it cannot verify a re-detection alone).
+    // al. CVPR 2017). lost_object: an answer's box lost the contrasted object since the last
+    // (re)start or accepted frame (the model may have followed the background, so it cannot
+    // verify a re-detection alone).
     struct References {
       TargetContrast::Reading contrast;
       bool lost_object = false;
@@ -160,6 +166,9 @@ struct Pipeline::Impl {
       double coherence_sum = 0.0;  // lineCoherence of the box, summed over the motion checks
       int coherence_checks = 0;
       bool provisional = false;  // started on persistence alone: any confirmed candidate replaces it
+      // The start (centre, background, size) is taken at the next auto-initialisation frame: a
+      // track re-acquired in step() is re-placed before search() has measured this frame's motion.
+      bool start_pending = false;
     };
 
     Track(const TrackerParams& filter, const LoopParams& loop) : kcf(filter) {
@@ -217,6 +226,9 @@ struct Pipeline::Impl {
   Track& newTrack(const cv::Mat& frame, double stamp, const cv::Rect2f& box);
   Track& newAutoTrack(const cv::Mat& frame, double stamp, const cv::Rect2f& box);
   void beginVerification(Track& t, const cv::Rect2f& box);
+  void restartVerification(Track& t);
+  void placeVerificationStart(Track& t);
+  bool verificationOn() const { return params.auto_init_verify_frames > 0 && params.auto_init_min_motion > 0.0; }
   void report();
   const std::vector<Obstacle>& run(const cv::Mat& frame, double stamp, const cv::Rect2f* start_box);
 

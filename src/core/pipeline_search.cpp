@@ -66,7 +66,8 @@ void Pipeline::Impl::mergeTracks() {
 // background (AutoInitializer::backgroundMotion) by 2 x auto_init_min_motion plus half the
 // background's own displacement, and either as far in the image or (a target the camera keeps
 // in view) a little, with pixels that change; or once it has grown by auto_init_min_growth in
-// ln sqrt(area) while its pixels grow steadily, away from the frame's edge.
+// ln sqrt(area) while its pixels grow steadily, away from the frame's edge. A track re-acquired on
+// contrast alone (pipeline_tracking.cpp, contrastedCandidate) is verified the same way.
 // While a track is unverified the AutoInitializer keeps running, and a candidate it confirms
 // elsewhere becomes a challenger: tracked and verified the same way, but not reported. A
 // challenger that passes replaces a track still unverified after auto_init_verify_frames
@@ -79,7 +80,7 @@ void Pipeline::Impl::mergeTracks() {
 // costs what it costs while searching (and allocates as it does: the feature tracks of
 // background_motion.h).
 void Pipeline::Impl::verify(Track& t) {
-  if (t.verification.verified || t.status.state == TrackState::kLost) return;
+  if (t.verification.verified || t.verification.start_pending || t.status.state == TrackState::kLost) return;
   if (params.auto_init_verify_frames <= 0 || params.auto_init_min_motion <= 0.0) {
     t.verification.verified = true;  // switched off since the track started
     return;
@@ -195,7 +196,10 @@ void Pipeline::Impl::search(const cv::Mat& frame, double stamp) {
   if ((frame_index - 1) % params.detection_interval != 0) return;
   autoinit_fresh = false;
   const std::vector<SalientRegion>& found = autoinit.update(frame, stamp);
-  for (auto& t : tracks) verify(*t);
+  for (auto& t : tracks) {
+    placeVerificationStart(*t);
+    verify(*t);
+  }
   settleChallenge();
   for (const auto& r : found) {
     if (!usableBox(r.box, frame_size)) continue;

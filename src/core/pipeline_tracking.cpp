@@ -59,8 +59,10 @@ bool Pipeline::Impl::redetect(Track& t, const cv::Mat& frame, double stamp) {
   if (best < 0) return false;
   if (!restartOn(t, frame, stamp, candidates[static_cast<std::size_t>(best)].box, chosen)) return false;
   // Taken on contrast alone, the region is a new detection: an obstacle once it has moved like
-  // one (verify()), as an auto-started track is; until then its confidence stays below 0.5.
-  if (by_contrast) beginVerification(t, t.status.box);
+  // one (verify()), as an auto-started track is; until then its confidence stays below 0.5. It
+  // is handled as an auto-started track from then on (it may give way to a challenger, or be set
+  // aside when it does not move).
+  if (by_contrast) restartVerification(t);
   return true;
 }
 
@@ -127,7 +129,8 @@ int Pipeline::Impl::chooseCandidate(Track& t, const cv::Mat& frame, KcfResult& c
     }
   }
   by_contrast = false;
-  if (best < 0 && t.refs.lost_object) {
+  // Only with the verification on: without it, clutter taken on contrast would be confident.
+  if (best < 0 && t.refs.lost_object && verificationOn()) {
     best = contrastedCandidate(t, frame, chosen);
     if (best >= 0) {
       by_contrast = true;
@@ -163,9 +166,9 @@ int Pipeline::Impl::chooseCandidate(Track& t, const cv::Mat& frame, KcfResult& c
 // the caller reports the track as unverified until it moves like an obstacle.
 int Pipeline::Impl::contrastedCandidate(Track& t, const cv::Mat& frame, KcfResult& chosen) {
   const float need = std::max(TargetContrast::kMinReference, kReacquireContrastShare * t.refs.contrast.ratio);
-  const std::size_t verify =
+  const std::size_t considered =
       std::min<std::size_t>(candidates.size(), static_cast<std::size_t>(params.redetect_candidates));
-  for (std::size_t i = 0; i < verify; ++i) {
+  for (std::size_t i = 0; i < considered; ++i) {
     if (candidates[i].prior < kReacquireMinPrior) break;  // sorted: none of the rest is plausible
     if (contrast.measure(frame, candidates[i].box) < need) continue;
     chosen = t.kcf.evaluate(frame, candidates[i].box);
@@ -293,7 +296,8 @@ void Pipeline::Impl::bridgeDroppedFrames(Track& t, const cv::Mat& frame) {
 
 // A peak on a box that no longer holds the contrasted object it started on is the filter
 // following the background (target_contrast.h): the frame fails like a low peak, the track
-// re-detects around where the object was last seen, and the mark stays until the next restart.
+// re-detects around where the object was last seen, and the mark stays until the filter
+// restarts or an answer is accepted again.
 bool Pipeline::Impl::lostObject(Track& t, const cv::Mat& frame, const cv::Rect2f& box) {
   if (t.refs.contrast.ratio < TargetContrast::kMinReference) return false;  // nothing to lose
   if (!TargetContrast::lost(t.refs.contrast, contrast.read(frame, box))) return false;
@@ -316,6 +320,7 @@ void Pipeline::Impl::step(Track& t, const cv::Mat& frame, double stamp) {
   // Checked whatever the peak: a low peak on a box that lost the object also marks the model.
   const bool lost_object = usable && lostObject(t, frame, r.box);
   if (r.peak >= needed && usable && inFrameFraction(r.box) >= kMinInFrame && !lost_object) {
+    t.refs.lost_object = false;  // the model found the object again on its own
     updateRefs(t, r);
     t.looming.track(frame, stamp, r.box);
     acceptGood(t, r.box, stamp);

@@ -84,6 +84,8 @@ TEST(PipelineContrast, AnAircraftSeenAgainIsTakenBackOnItsContrastUnconfirmedFir
     Pipeline p{Params()};
     cv::Rect a = aircraftAt(0);
     std::vector<Obstacle> out = p.startTrack(frameOf(sky, 200, &a), 0.0, cv::Rect2f(144.0f, 105.0f, 17.0f, 13.0f));
+    ASSERT_EQ(out.size(), 1u);
+    const int id = out[0].id;
     for (int k = 1; k < 20; ++k) {
       a = aircraftAt(k);
       out = p.process(frameOf(sky, 200 + k, k < 10 ? &a : nullptr), k / 30.0);
@@ -96,7 +98,10 @@ TEST(PipelineContrast, AnAircraftSeenAgainIsTakenBackOnItsContrastUnconfirmedFir
       // On the aircraft: the box holds its centre (boxes of re-detections are grown from the
       // region's core and are larger than a 5 x 3 px aircraft).
       const bool on = out[0].box.contains(cv::Point2f(a.x + 2.5f, a.y + 1.5f));
-      if (on && first_on < 0) first_on = k;
+      if (on && first_on < 0) {
+        first_on = k;
+        EXPECT_EQ(out[0].id, id) << "the same track takes it back";
+      }
       if (on && !out[0].confirmed) ++unconfirmed_on;
       if (on && out[0].confidence >= 0.5f) ++confident_on;
       if (!on && out[0].confidence >= 0.5f) ++confident_off;

@@ -135,11 +135,12 @@ TEST(TimeToContact, RecedingIsNotClosing) {
     const TtcScore s = run("recede", seed, {640, 480});
     std::printf("[ ttc      ] recede seed %d: receding beyond doubt on %d, centre within 20 px on %d of %d frames, "
                 "box / true size at the last %.2f\n", seed, s.receding, s.followed, kFrames, s.last_size_ratio);
-    // Reported on most frames, so that "never closing" is checked on them. Not on all: far away
-    // in cloud the aircraft's contrast falls under TargetContrast::kFloor in its too large box
-    // (seeds 2 and 4, from about frame 50 and 90); the track then re-detects, is dropped, and the
-    // auto-initialiser starts again (about 15 frames without a report).
-    EXPECT_GE(s.tracked, kFrames * 3 / 4) << "seed " << seed;
+    // Reported on nearly every frame, so that "never closing" is checked on them. On seeds 2 and
+    // 4 the hazy aircraft's contrast in its box, which has not shrunk with it, falls under
+    // TargetContrast::kFloor in cloud; the track then re-detects, is dropped, and the
+    // auto-initialiser starts again: those two are held to three quarters of the frames.
+    const bool fades = seed == 2 || seed == 4;
+    EXPECT_GE(s.tracked, fades ? kFrames * 3 / 4 : kFrames - 5) << "seed " << seed;
     EXPECT_EQ(s.closing, 0) << "seed " << seed;  // a planner would act on a single such frame
   }
 }

@@ -26,10 +26,11 @@ namespace core {
 // contrast can: lost() is true when a box that started on a contrasted object (at least
 // kMinReference) holds nothing out of the noise any more (under kFloor), and the pipeline then
 // takes the frame as failed and re-detects (pipeline_tracking.cpp). An object whose contrast
-// merely fades stays found; unknown is never lost. Nor is a ratio that fell because the ring's
-// noise rose beyond kMaxNoiseRise x the reference's: the object moved in front of clutter (an
-// aircraft taxiing past a hillside and runway markings, whose ring noise rose sevenfold while it
-// stayed in its box), where a low ratio says nothing about the box.
+// merely fades stays found while it stays out of the noise (one that fades into it, or that
+// fills only a small part of a box too large for it, reads lost); unknown is never lost. Nor is
+// a ratio that fell because the ring's noise rose beyond kMaxNoiseRise x the reference's: the
+// object moved in front of clutter (an aircraft taxiing past a hillside and runway markings),
+// where a low ratio says nothing about the box.
 class TargetContrast {
  public:
   static constexpr float kUnknown = -1.0f;

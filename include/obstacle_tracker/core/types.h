@@ -39,9 +39,10 @@ struct Obstacle {
   double time_to_contact_sigma = std::numeric_limits<double>::infinity();  // s; +inf when not closing
   int age = 0;                    // frames since the track started
   bool model_updated = false;     // the filter learned from this frame (false under occlusion)
-  // False while an auto-started track has not shown itself an obstacle (moved against the
-  // background, or grown); its confidence is then below kUnconfirmedConfidenceCap, so that a
-  // planner acting on confidence >= 0.5 never acts on an on-screen overlay or a mast.
+  // False while an auto-started track, or one re-acquired on its contrast alone, has not shown
+  // itself an obstacle (moved against the background, or grown); its confidence is then below
+  // kUnconfirmedConfidenceCap, so that a planner acting on confidence >= 0.5 never acts on an
+  // on-screen overlay or a mast.
   bool confirmed = true;
 };
 
