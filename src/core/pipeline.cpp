@@ -128,6 +128,12 @@ void Pipeline::Impl::beginVerification(Track& t, const cv::Rect2f& box) {
   t.verification = Track::Verification();
   if (!verificationOn()) return;
   t.verification.verified = false;
+  setVerificationStart(t, box);
+}
+
+// Where verify() measures the track's motion and growth from: box, and the background's motion
+// so far.
+void Pipeline::Impl::setVerificationStart(Track& t, const cv::Rect2f& box) {
   t.verification.start_centre = boxCentre(box);
   t.verification.start_background = autoinit.backgroundMotion();
   t.verification.start_log_size = 0.5f * std::log(std::max(1.0f, box.area()));
@@ -149,9 +155,7 @@ void Pipeline::Impl::restartVerification(Track& t) {
 void Pipeline::Impl::placeVerificationStart(Track& t) {
   if (!t.verification.start_pending) return;
   t.verification.start_pending = false;
-  t.verification.start_centre = boxCentre(t.status.box);
-  t.verification.start_background = autoinit.backgroundMotion();
-  t.verification.start_log_size = 0.5f * std::log(std::max(1.0f, t.status.box.area()));
+  setVerificationStart(t, t.status.box);
 }
 
 void Pipeline::Impl::report() {

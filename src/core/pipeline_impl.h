@@ -226,6 +226,7 @@ struct Pipeline::Impl {
   Track& newTrack(const cv::Mat& frame, double stamp, const cv::Rect2f& box);
   Track& newAutoTrack(const cv::Mat& frame, double stamp, const cv::Rect2f& box);
   void beginVerification(Track& t, const cv::Rect2f& box);
+  void setVerificationStart(Track& t, const cv::Rect2f& box);
   void restartVerification(Track& t);
   void placeVerificationStart(Track& t);
   bool verificationOn() const { return params.auto_init_verify_frames > 0 && params.auto_init_min_motion > 0.0; }

@@ -299,7 +299,8 @@ void Pipeline::Impl::bridgeDroppedFrames(Track& t, const cv::Mat& frame) {
 // re-detects around where the object was last seen, and the mark stays until the filter
 // restarts or an answer is accepted again.
 bool Pipeline::Impl::lostObject(Track& t, const cv::Mat& frame, const cv::Rect2f& box) {
-  if (t.refs.contrast.ratio < TargetContrast::kMinReference) return false;  // nothing to lose
+  // lost() tests this too; here it spares the measurement on a track that has nothing to lose.
+  if (t.refs.contrast.ratio < TargetContrast::kMinReference) return false;
   if (!TargetContrast::lost(t.refs.contrast, contrast.read(frame, box))) return false;
   t.refs.lost_object = true;
   return true;
