@@ -91,8 +91,10 @@ TargetContrast::Reading TargetContrast::read(const cv::Mat& frame, const cv::Rec
 }
 
 bool TargetContrast::lost(const Reading& reference, const Reading& current) {
-  return reference.ratio >= kMinReference && current.ratio != kUnknown && current.ratio < kFloor &&
-         current.noise <= kMaxNoiseRise * reference.noise;
+  if (reference.ratio < kMinReference || current.ratio == kUnknown) return false;
+  if (current.noise > kMaxNoiseRise * reference.noise) return false;
+  const float signal = current.ratio * current.noise;
+  return signal < kFloor * std::max(current.noise, reference.noise);
 }
 
 }  // namespace core

@@ -3,7 +3,7 @@
 // TargetContrast (target_contrast.h): known answers for a small target against sky noise, a box
 // on plain sky, one hot pixel, a thin object, a box that covers the view, a colour-only target, a
 // near obstacle at 1080p (sampled grids), an object in front of clutter, no allocation, the lost()
-// rule and bad input.
+// rule, a box on a piece of cloud when the clouds clear, and bad input.
 #include <cmath>
 #include <limits>
 
@@ -158,6 +158,39 @@ TEST(TargetContrast, LostOnlyWhenNothingStandsOutOfAnObjectThatDidAtItsStart) {
   EXPECT_TRUE(C::lost(at(40.0f, 3.0f), at(2.0f, 3.0f * C::kMaxNoiseRise)));
   EXPECT_FALSE(C::lost(at(40.0f, 3.0f), at(2.0f, 3.0f * C::kMaxNoiseRise + 0.1f)));
   EXPECT_TRUE(C::lost(at(40.0f, 3.0f), at(2.0f, 1.0f)));    // calmer surroundings: still lost
+  // The ring's noise fell: the signal must still stand out of the noise the object was first
+  // seen against (a ratio of 4.8 on a 5x calmer ring is a signal of 0.9 of that noise).
+  EXPECT_TRUE(C::lost(at(10.0f, 16.0f), at(4.8f, 3.1f)));
+  EXPECT_TRUE(C::lost(at(10.0f, 16.0f), at(C::kFloor * 16.0f / 3.0f - 0.1f, 3.0f)));
+  EXPECT_FALSE(C::lost(at(10.0f, 16.0f), at(C::kFloor * 16.0f / 3.0f + 0.1f, 3.0f)));
+  EXPECT_FALSE(C::lost(at(10.0f, 16.0f), at(40.0f, 3.0f)));  // an aircraft out of the clutter into clear sky
+}
+
+TEST(TargetContrast, ABoxOnAPieceOfCloudIsLostWhenTheCloudsClear) {
+  // A filter started on a bright streak in a bank of mottled cloud: its ring is noisy and the
+  // streak stands out of it by 6 of that noise or more. Then the clouds clear and the box holds a
+  // faint remnant of the streak on a plain sky: out of the new, calmer ring's noise by over the
+  // floor, but under the floor of the noise it was first measured against. An aircraft that
+  // leaves the same clouds for the same sky keeps its signal and is not lost.
+  const core::TargetContrast contrast;
+  const cv::Rect2f box(140.0f, 110.0f, 40.0f, 20.0f);
+  cv::Mat patches(60, 80, CV_8UC1);
+  cv::RNG rng(3);
+  rng.fill(patches, cv::RNG::NORMAL, 100, 12);
+  cv::Mat clouds;
+  cv::resize(patches, clouds, cv::Size(320, 240), 0.0, 0.0, cv::INTER_NEAREST);
+  cv::rectangle(clouds, cv::Rect(145, 115, 30, 10), cv::Scalar(230), cv::FILLED);
+  const core::TargetContrast::Reading start = contrast.read(clouds, box);
+  ASSERT_GE(start.ratio, core::TargetContrast::kMinReference);
+  cv::Mat clear = skyFrame(cv::Size(320, 240), 100.0, 2.0);
+  cv::Mat remnant = clear.clone();
+  cv::rectangle(remnant, cv::Rect(145, 115, 30, 10), cv::Scalar(112), cv::FILLED);
+  const core::TargetContrast::Reading faint = contrast.read(remnant, box);
+  ASSERT_GE(faint.ratio, core::TargetContrast::kFloor);  // the ratio alone would keep it
+  EXPECT_TRUE(core::TargetContrast::lost(start, faint));
+  cv::Mat aircraft = clear.clone();
+  cv::rectangle(aircraft, cv::Rect(145, 115, 30, 10), cv::Scalar(230), cv::FILLED);
+  EXPECT_FALSE(core::TargetContrast::lost(start, contrast.read(aircraft, box)));
 }
 
 TEST(TargetContrast, BadInputIsUnknown) {

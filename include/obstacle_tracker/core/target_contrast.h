@@ -30,7 +30,11 @@ namespace core {
 // fills only a small part of a box too large for it, reads lost); unknown is never lost. Nor is
 // a ratio that fell because the ring's noise rose beyond kMaxNoiseRise x the reference's: the
 // object moved in front of clutter (an aircraft taxiing past a hillside and runway markings),
-// where a low ratio says nothing about the box.
+// where a low ratio says nothing about the box. Where the ring's noise fell instead (the clouds
+// around the start cleared), the ratio rises for anything in the box, so the signal (ratio x
+// noise) is held against the larger of the two noises: a piece of cloud the filter started on
+// leaves a faint remnant that stands out of the plain sky but not out of the clouds it stood out
+// of, while an aircraft keeps its signal.
 class TargetContrast {
  public:
   static constexpr float kUnknown = -1.0f;
