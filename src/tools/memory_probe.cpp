@@ -7,8 +7,8 @@
 // a track exists; the core's resident memory with three tracks on 1280x720 frames under 30 MiB").
 // A generated scene (default "multi": three obstacles whose paths cross) is rendered into memory
 // first and the generator destroyed, so that its memory is not counted; then a Pipeline with
-// max_obstacles = 3 starts one track per ground-truth box of the first frame (startTrack) and
-// processes the other frames. Reported:
+// max_obstacles = 3 is prepared for the frame size (as the nodelet does), starts one track per
+// ground-truth box of the first frame (startTrack) and processes the other frames. Reported:
 //   heap   glibc mallinfo2() in-use bytes (arena + mmapped) relative to just before the Pipeline
 //          is constructed: after warm-up, at the end, and the largest value seen after a frame;
 //          plus the exact peak of the live bytes counted by this program's allocator wrappers

@@ -14,10 +14,12 @@ ParsedCommandLine parseProbeOptions(int argc, const char* const* argv) {
   ProbeOptions& options = parsed.options;
   scene::ScenarioConfig& cfg = options.scene;
   cfg.name = "multi";
-  cfg.seed = 1;
+  // Seed 9: its three targets stay in their filters (on seed 1 the flapping bird leaves its
+  // filter at once and its track, re-acquired unconfirmed, runs the auto-initialiser beside it).
+  cfg.seed = 9;
   cfg.frames = 300;
   cfg.size = cv::Size(1280, 720);
-  int seed = 1;
+  int seed = 9;
   std::string size;
   CLI::App app{"Measures the memory of core::Pipeline with three tracks on a generated scene (heap, RSS, "
                "allocations per frame after the warm-up, live tracks).",
@@ -29,7 +31,7 @@ ParsedCommandLine parseProbeOptions(int argc, const char* const* argv) {
   app.add_option("--scenario", cfg.name,
                  "generated scene with three obstacles (default multi; see generate_scene --list)")
       ->type_name("S");
-  app.add_option("--seed", seed, "scene seed (default 1)")->type_name("N");
+  app.add_option("--seed", seed, "scene seed (default 9)")->type_name("N");
   app.add_option("--warmup", options.warmup, "frames after the start before allocations are counted (default 30)")
       ->type_name("N");
   app.add_option("--start", options.start_count,
