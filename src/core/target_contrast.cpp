@@ -91,10 +91,11 @@ TargetContrast::Reading TargetContrast::read(const cv::Mat& frame, const cv::Rec
 }
 
 bool TargetContrast::lost(const Reading& reference, const Reading& current) {
-  if (reference.ratio < kMinReference || current.ratio == kUnknown) return false;
+  if (!(reference.ratio >= kMinReference) || current.ratio == kUnknown) return false;
   if (current.noise > kMaxNoiseRise * reference.noise) return false;
-  const float signal = current.ratio * current.noise;
-  return signal < kFloor * std::max(current.noise, reference.noise);
+  // Under the floor of the ring's noise now, or (the ring calmer than at the start) its signal
+  // under the floor of the noise at the start.
+  return current.ratio < kFloor || current.ratio * current.noise < kFloor * reference.noise;
 }
 
 }  // namespace core

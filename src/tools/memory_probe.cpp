@@ -12,7 +12,7 @@
 //   heap   glibc mallinfo2() in-use bytes (arena + mmapped) relative to just before the Pipeline
 //          is constructed: after warm-up, at the end, and the largest value seen after a frame;
 //          plus the exact peak of the live bytes counted by this program's allocator wrappers
-//          (which also sees peaks inside a frame).
+//          (which also sees peaks inside a frame, and prepare()'s).
 //   RSS    VmRSS / VmHWM from /proc/self/status before the Pipeline, after warm-up and at the end.
 //   calls  malloc/calloc/realloc/posix_memalign/aligned_alloc/memalign calls per frame after the
 //          warm-up (wrappers in this program forward to the next definition, dlsym(RTLD_NEXT), so

@@ -24,9 +24,10 @@ namespace core {
 // sky learns mostly sky; under a pan it can follow the sky's texture (clouds, the sensor's fixed
 // pattern) with a perfect peak while the target flies on. The peak cannot tell; the box's
 // contrast can: lost() is true when a box that started on a contrasted object (at least
-// kMinReference) holds nothing out of the noise any more (under kFloor), and the pipeline then
-// takes the frame as failed and re-detects (pipeline_tracking.cpp). An object whose contrast
-// merely fades stays found while it stays out of the noise (one that fades into it, or that
+// kMinReference) holds nothing out of the noise any more (under kFloor of the larger of the
+// ring's noise now and at the start, below), and the pipeline then takes the frame as failed and
+// re-detects (pipeline_tracking.cpp). An object whose contrast merely fades stays found while it
+// stays out of that noise (one that fades into it, or that
 // fills only a small part of a box too large for it, reads lost); unknown is never lost. Nor is
 // a ratio that fell because the ring's noise rose beyond kMaxNoiseRise x the reference's: the
 // object moved in front of clutter (an aircraft taxiing past a hillside and runway markings),

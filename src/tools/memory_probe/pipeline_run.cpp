@@ -81,7 +81,8 @@ PipelineMemory measurePipeline(const RenderedScene& scene, int warmup, int start
     core::Params params;
     params.max_obstacles = 3;
     core::Pipeline pipeline(params);
-    // As the nodelet does before its first frame: buffers for the largest re-detection window.
+    // As the nodelet does before its first frame: one run over a synthetic clip, so that buffers,
+    // OpenCV's tables and threads exist before the first real frame.
     pipeline.prepare(scene.frames.front().size(), scene.frames.front().type());
     startTracks(pipeline, scene, start_count, &m);
     m.heap_peak = std::max(m.heap_peak, heapInUse() - m.heap_before);
