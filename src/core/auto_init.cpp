@@ -166,7 +166,7 @@ void AutoInitializer::Impl::confirm(const cv::Mat& frame) {
   int set_aside_best = -1;
   double set_aside_score = 0.0;
   for (const Candidate& c : candidates) {
-    raw.push_back(toFrame(toRegion(c.box, c.area, c.mean, c.peak / 255.0, c.touches_border)));
+    raw.push_back(toFrame(toRegion(c.box, c.area, c.mean, c.strength / 255.0, c.touches_border)));
   }
   for (std::size_t i = 0; i < tracks.size(); ++i) {
     const Track& t = tracks[i];

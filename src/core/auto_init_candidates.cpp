@@ -56,13 +56,16 @@ cv::Mat AutoInitializer::Impl::candidateMap(const cv::Mat& grey) {
     cv::multiply(contrast, sal_full, p, 1.0 / 255.0);
   } else {
     sal_full.copyTo(p);
+    contrast_map.release();  // no contrast map: no isolated candidates, no stale one either
   }
   return p;
 }
 
-// Candidates of one frame: peaks of P grown into regions, filtered; best first.
+// Candidates of one frame: peaks of P and isolated peaks of the local contrast, grown into
+// regions, filtered; best first (keepBest).
 void AutoInitializer::Impl::findCandidates(const cv::Mat& p) {
   cellPeaks(p);
+  isolatedPeaks(p);
   const int rows = p.rows, cols = p.cols;
   // Grow each peak into its region (>= kGrowShare x the peak), drop duplicates and filtered regions.
   if (stamp.size() != static_cast<size_t>(rows) * cols) {
@@ -86,79 +89,41 @@ void AutoInitializer::Impl::findCandidates(const cv::Mat& p) {
     // (Still candidates do not count: a target passing over an overlay is not the overlay.)
     for (size_t j = 0; j < kept && !same; ++j) same = candidates[j].stamp == seed_stamp && !candidates[j].still;
     if (same) continue;
-    growRegion(p, seed, c);
+    growRegion(c.from_contrast ? contrast_map : p, seed, c);
     if (keepCandidate(c, cols, max_area)) candidates[kept++] = c;
   }
+  keepBest(kept);
+}
+
+// Of the `kept` first candidates: the best auto_init_candidates peaks of P (ties: larger mean),
+// then the kIsolatedCandidates most isolated of the contrast source. Still candidates after the
+// others in each group, so that they never take a moving one's place.
+void AutoInitializer::Impl::keepBest(size_t kept) {
   candidates.resize(kept);
-  // Best peaks first (ties: larger mean), at most auto_init_candidates.
-  // Still candidates after the others, so that they never take a moving one's place.
-  std::stable_sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
+  // Grown in order, the peaks of P before the isolated ones (cellPeaks, then isolatedPeaks).
+  const auto contrast_start = std::find_if(candidates.begin(), candidates.end(),
+                                           [](const Candidate& c) { return c.from_contrast; });
+  // Ties in growth order (the stamps rise with it): std::sort with that last key orders as a
+  // stable sort would, without the stable sort's temporary buffer.
+  std::sort(candidates.begin(), contrast_start, [](const Candidate& a, const Candidate& b) {
     if (a.still != b.still) return b.still;
-    return a.peak != b.peak ? a.peak > b.peak : a.mean > b.mean;
+    if (a.peak != b.peak) return a.peak > b.peak;
+    return a.mean != b.mean ? a.mean > b.mean : a.stamp < b.stamp;
   });
-  if (static_cast<int>(candidates.size()) > params.auto_init_candidates)
-    candidates.resize(static_cast<size_t>(params.auto_init_candidates));
+  std::sort(contrast_start, candidates.end(), [](const Candidate& a, const Candidate& b) {
+    if (a.still != b.still) return b.still;
+    return a.isolation != b.isolation ? a.isolation > b.isolation : a.stamp < b.stamp;
+  });
+  const auto from_p = static_cast<int>(contrast_start - candidates.begin());
+  const int keep_p = std::min(from_p, params.auto_init_candidates);
+  const int keep_isolated = std::min(static_cast<int>(candidates.size()) - from_p, kIsolatedCandidates);
+  // Move the kept isolated ones up behind the kept peaks of P (no allocation: a rotate in place).
+  std::rotate(candidates.begin() + keep_p, contrast_start, contrast_start + keep_isolated);
+  candidates.resize(static_cast<size_t>(keep_p + keep_isolated));
 }
 
-// Peaks of P that are maxima of their kCell x kCell cell and its 8 neighbours (at least 8 and a
-// tenth of the frame's best), strongest first, at most kPoolFactor x auto_init_candidates.
-void AutoInitializer::Impl::cellPeaks(const cv::Mat& p) {
-  candidates.clear();
-  const int rows = p.rows, cols = p.cols;
-  const int gw = (cols + kCell - 1) / kCell, gh = (rows + kCell - 1) / kCell;
-  cell_max.assign(static_cast<size_t>(gw) * gh, -1.0f);
-  int global_max = 0;
-  for (int r = 0; r < rows; ++r) {
-    const uchar* o = p.ptr<uchar>(r);
-    float* cm = &cell_max[static_cast<size_t>(r / kCell) * gw];
-    for (int gx = 0; gx < gw; ++gx) {
-      const int x0 = gx * kCell, x1 = std::min(cols, x0 + kCell);
-      uchar m = 0;
-      for (int x = x0; x < x1; ++x) m = std::max(m, o[x]);  // vectorisable max
-      cm[gx] = std::max(cm[gx], static_cast<float>(m));
-    }
-  }
-  for (float v : cell_max) global_max = std::max(global_max, static_cast<int>(v));
-  const float floor_value = std::max(kMinPeakLevel, kMinPeakShare * global_max);
-  for (int gy = 0; gy < gh; ++gy)
-    for (int gx = 0; gx < gw; ++gx) {
-      const float v = cell_max[static_cast<size_t>(gy) * gw + gx];
-      if (v < floor_value) continue;
-      bool is_max = true;
-      for (int dy = -1; dy <= 1 && is_max; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          const int nx = gx + dx, ny = gy + dy;
-          if ((dx || dy) && nx >= 0 && ny >= 0 && nx < gw && ny < gh &&
-              cell_max[static_cast<size_t>(ny) * gw + nx] > v) {
-            is_max = false;
-            break;
-          }
-        }
-      if (!is_max) continue;
-      Candidate c;
-      c.peak = v;
-      // Where in the cell the maximum is (first in raster order).
-      const int x0 = gx * kCell, y0 = gy * kCell;
-      const int x1 = std::min(cols, x0 + kCell), y1 = std::min(rows, y0 + kCell);
-      bool found = false;
-      for (int y = y0; y < y1 && !found; ++y) {
-        const uchar* o = p.ptr<uchar>(y);
-        for (int x = x0; x < x1; ++x)
-          if (o[x] == static_cast<uchar>(v)) {
-            c.centre = cv::Point2f(static_cast<float>(x), static_cast<float>(y));
-            found = true;
-            break;
-          }
-      }
-      candidates.push_back(c);
-    }
-  std::sort(candidates.begin(), candidates.end(),
-            [](const Candidate& a, const Candidate& b) { return a.peak > b.peak; });
-  const size_t pool = static_cast<size_t>(kPoolFactor * params.auto_init_candidates);
-  if (candidates.size() > pool) candidates.resize(pool);
-}
-
-// The 8-connected region of P >= kGrowShare x the candidate's peak around `seed` (within
+// The 8-connected region of `p` (P, or the contrast map for an isolated candidate) >=
+// kGrowShare x the candidate's peak around `seed` (within
 // kGrowRadius), stamped with a new stamp value: the candidate's box, area, mean and centre, and
 // the growth cue's size measure. Leaves the region's pixels in `queue`.
 void AutoInitializer::Impl::growRegion(const cv::Mat& p, cv::Point seed, Candidate& c) {
@@ -189,7 +154,7 @@ void AutoInitializer::Impl::growRegion(const cv::Mat& p, cv::Point seed, Candida
   };
   growRegion8(queue, cols, cv::Rect(cv::Point(x_lo, y_lo), cv::Point(x_hi + 1, y_hi + 1)), claim, visit);
   {
-    // Size measure for the growth cue: pixels of P >= kSizeShare x the peak in a window
+    // Size measure for the growth cue: pixels of `p` >= kSizeShare x the peak in a window
     // around the grown core (thin parts of a silhouette, e.g. wings, stay under the core's
     // 0.3 x peak but above this).
     const int r = 2 * std::max(x1 - x0 + 1, y1 - y0 + 1) + 4;
@@ -208,6 +173,8 @@ void AutoInitializer::Impl::growRegion(const cv::Mat& p, cv::Point seed, Candida
   c.box = cv::Rect(cv::Point(x0, y0), cv::Point(x1 + 1, y1 + 1));
   c.centre = cv::Point2f(0.5f * (x0 + x1 + 1), 0.5f * (y0 + y1 + 1));
   c.touches_border = x0 == 0 || y0 == 0 || x1 == cols - 1 || y1 == rows - 1;
+  c.truncated = x0 == seed.x - kGrowRadius || x1 == seed.x + kGrowRadius || y0 == seed.y - kGrowRadius ||
+                y1 == seed.y + kGrowRadius;
 }
 
 // The filters a grown candidate (its region's pixels in `queue`) must pass; sets c.still.
@@ -216,6 +183,15 @@ bool AutoInitializer::Impl::keepCandidate(Candidate& c, int cols, double max_are
   // Size: the grown core of a target of a few pixels (or of a thin silhouette) is smaller than
   // the target, so the object pixels (size_px) count too.
   if (std::max(c.box.area(), c.size_px) < params.min_object_area || c.area > max_area) return false;
+  // The contrast source measures isolation for objects of up to two cells (ringClutter): a region
+  // grown longer than that is a line or an edge whose end stood out, not a small object.
+  if (c.from_contrast && std::max(c.box.width, c.box.height) > 2 * kCell) return false;
+  // A thin region that reached kGrowRadius from its seed is a piece of a band longer than any
+  // candidate (a horizon, a shore, the warm strip along a thermal frame's bottom): the pieces
+  // of it seeded along its length take turns as its peak, and their track then "moves" along
+  // the band. A large object, cut at the radius too, is not thin.
+  if (c.truncated && std::max(c.box.width, c.box.height) >= kBandElongation * std::min(c.box.width, c.box.height))
+    return false;
   // Most of its pixels locked to the image: part of the on-screen display (overlay_mask.h).
   if (overlayShare(queue, cols) >= AutoInitializer::kOverlayShare) return false;
   if (params.auto_init_reject_static && frame_index > 0) {

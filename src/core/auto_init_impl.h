@@ -1,8 +1,9 @@
 // Copyright (c) 2026, obstacle_tracker developers. BSD-3-Clause.
 //
 // AutoInitializer::Impl, shared by auto_init.cpp (the frame's steps, background, still pixels,
-// confirmation), auto_init_candidates.cpp (candidate map and candidates) and auto_init_tracks.cpp
-// (candidate tracks and their motion and growth cues). Private to the core.
+// confirmation), auto_init_candidates.cpp (candidate map and candidates), auto_init_cells.cpp
+// (where candidates start: cell peaks) and auto_init_tracks.cpp (candidate tracks and their
+// motion and growth cues). Private to the core.
 //
 // Multi-frame auto-initialisation (auto_init.h, AutoInitializer). One frame's saliency picks the
 // wrong object on real footage (on-screen text, sunlit ground, parked aircraft outrank the
@@ -25,7 +26,11 @@
 //   3. candidates: peaks of P that are maxima of their 16x16 cell and its 8 neighbours, the best
 //      auto_init_candidates of them; box = the 8-connected pixels >= 0.3 x the peak around it;
 //      regions touching the frame border are dropped when reject_border_regions is set, and
-//      regions with at least kOverlayShare of their pixels on the overlay mask always;
+//      regions with at least kOverlayShare of their pixels on the overlay mask always, and so
+//      are bands (cut at kGrowRadius and kBandElongation x as long as wide). Beside
+//      them, up to kIsolatedCandidates isolated peaks of the local contrast map (at least
+//      kMinIsolation x the clutter of the cells around them), grown on that map: a small target
+//      on plain sky that P's MBD factor, normalised to the frame's most salient object, hides;
 //   4. candidates are associated with the tracks of earlier frames (nearest predicted position
 //      within a gate); a track is confirmed once seen auto_init_frames times (persistence, at
 //      least 60 % of the frames since it appeared) and, when auto_init_min_motion > 0, once it
@@ -34,10 +39,11 @@
 //      background) and vacated its old place (the local contrast there, carried with the
 //      background, has fallen under half of what it was: a peak wandering along a static lattice
 //      or edge leaves the structure behind), or, when auto_init_min_growth > 0, once its object
-//      pixels (P >= 0.1 x its peak around the core) have grown steadily by that much in
+//      pixels (>= 0.1 x its peak around the core, on the map it was grown on) have grown
+//      steadily by that much in
 //      ln sqrt(pixels) over its history: an obstacle on a collision course keeps its bearing and
 //      only grows. Still candidates (pixels unchanged for 3 frames) are kept for this cue only;
-//   5. score of a confirmed track: mean peak of P x seen share x min(1, motion / (3 x
+//   5. score of a confirmed track: mean of P at its peaks x seen share x min(1, motion / (3 x
 //      auto_init_min_motion)) (or growth / (3 x auto_init_min_growth));
 //   6. the box of a confirmed track is refined by the saliency detector (FastMBD + Otsu) in a
 //      window of 4 x the box (at least 32 px) at native resolution, when its best region
@@ -67,6 +73,7 @@ namespace auto_init_detail {
 
 constexpr int kCell = 16;           // candidate cell side (px)
 constexpr int kGrowRadius = 64;     // largest half-side of a candidate box (px)
+constexpr int kBandElongation = 4;  // a region cut at kGrowRadius this elongated is a band
 constexpr int kMaxMissed = 3;       // frames a track may go unseen before it is dropped
 constexpr size_t kMaxTracks = 96;
 constexpr int kPoolFactor = 4;      // peaks grown per frame, x auto_init_candidates
@@ -90,6 +97,12 @@ constexpr float kGateBoxShare = 0.75f;  // ... or this share of the track's long
 constexpr float kGatePxPerMissed = 2.0f;  // ... plus this per frame the track went unseen
 constexpr double kMinSeenShare = 0.6;   // a track must have been found on this share of its frames
 constexpr double kWithBackgroundMinPx = 1.0;  // rms image scatter (px) over which moving with the background shows
+// Isolated candidates (isolatedPeaks), on the doubled local contrast map: a cell maximum at least
+constexpr float kMinIsolation = 3.0f;  // this factor over the clutter of the ring around it,
+constexpr float kClutterFloor = 8.0f;  // taken as at least this (so the maximum is at least 24:
+                                       // 12 grey levels of local contrast)
+constexpr int kClutterRank = 4;             // clutter: the 4th loudest cell of the ring
+constexpr int kIsolatedCandidates = 8;      // kept per frame beside auto_init_candidates
 constexpr double kCueSaturation = 3.0;  // a cue counts in full at this multiple of its threshold
 
 struct Candidate {
@@ -97,7 +110,11 @@ struct Candidate {
   cv::Point2f centre;
   int area = 0;
   float peak = 0.0f, mean = 0.0f;
+  float strength = 0.0f;   // P at its peak: what scores its track (the two sources' peaks differ in units)
+  float isolation = 0.0f;  // contrast source: its contrast over the clutter around it
+  bool from_contrast = false;  // found by isolatedPeaks (grown on the contrast map), not on P
   bool touches_border = false;
+  bool truncated = false;  // its region reached kGrowRadius from the seed
   int stamp = -1;  // label of its region in the stamp image
   int size_px = 0;  // pixels of the object above kSizeShare x its peak (growth cue)
   bool still = false;  // its pixels have not changed for kStillFrames frames
@@ -162,11 +179,12 @@ struct AutoInitializer::Impl {
   int frame_index = 0;
   std::vector<int> stamp, queue;
   int stamp_value = 0;
-  std::vector<float> cell_max;
+  std::vector<float> cell_max, cell_contrast;
+  std::vector<Candidate> isolated;
   cv::Mat prev_grey, still, diff;  // persistent: previous grey frame, per-pixel still count
   std::array<cv::Mat, kLag + 1> past;          // grey frames t, t-1, ..., t-kLag (ring)
   std::array<cv::Matx33d, kLag + 1> past_image_to_first;
-  cv::Mat contrast_map;                        // last frame's local contrast (CV_8U), for the lag test
+  cv::Mat contrast_map;  // this frame's doubled local contrast (CV_8U): isolated candidates, lag test
   std::vector<Candidate> candidates;
   std::vector<Track> tracks;
   std::vector<SalientRegion> confirmed, raw;
@@ -174,7 +192,7 @@ struct AutoInitializer::Impl {
   double persistent_score = 0.0;
 
   Impl() {
-    candidates.reserve(64);
+    candidates.reserve(4 * 64 + 4 * 8);  // kPoolFactor x (the largest auto_init_candidates + kIsolatedCandidates)
     tracks.reserve(kMaxTracks + 64);
     confirmed.reserve(64);
     raw.reserve(64);
@@ -198,9 +216,17 @@ struct AutoInitializer::Impl {
   // auto_init_candidates.cpp
   cv::Mat candidateMap(const cv::Mat& grey);
   void findCandidates(const cv::Mat& p);
-  void cellPeaks(const cv::Mat& p);
+  void keepBest(size_t kept);
   void growRegion(const cv::Mat& p, cv::Point seed, Candidate& c);
   bool keepCandidate(Candidate& c, int cols, double max_area);
+
+  // auto_init_cells.cpp
+  void cellPeaks(const cv::Mat& p);
+  void isolatedPeaks(const cv::Mat& p);
+  static void cellMaxima(const cv::Mat& m, std::vector<float>& cells);
+  static bool isCellMaximum(const std::vector<float>& cells, int gx, int gy, int gw, int gh);
+  static cv::Point2f cellArgmax(const cv::Mat& m, int gx, int gy, float v);
+  static float ringClutter(const std::vector<float>& cells, int gx, int gy, int gw, int gh);
 
   // auto_init_tracks.cpp
   void associate();

@@ -44,7 +44,7 @@ void AutoInitializer::Impl::associate() {
       tr.area = c.area;
       tr.last_frame = frame_index;
       ++tr.hits;
-      tr.sum_peak += c.peak;
+      tr.sum_peak += c.strength;
       tr.last_mean = c.mean;
       tr.touches_border = c.touches_border;
       tr.still = c.still;
@@ -57,7 +57,7 @@ void AutoInitializer::Impl::associate() {
       tr.area = c.area;
       tr.first_frame = tr.last_frame = frame_index;
       tr.hits = 1;
-      tr.sum_peak = c.peak;
+      tr.sum_peak = c.strength;
       tr.last_mean = c.mean;
       tr.touches_border = c.touches_border;
       tr.still = c.still;

@@ -31,8 +31,9 @@ class AutoInitializer {
   void reset();
   const std::vector<SalientRegion>& update(const cv::Mat& frame, double stamp);
 
-  // Added (not part of the contract): the last frame's raw candidates (best peak first, score =
-  // peak of the candidate map in [0, 1]) and the accumulated background displacement in pixels
+  // Added (not part of the contract): the last frame's raw candidates (the peaks of the candidate
+  // map best first, then the isolated ones most isolated first; score = the candidate map at the
+  // peak, in [0, 1]) and the accumulated background displacement in pixels
   // (the frame centre's displacement summed over the frames: where the scene content at the
   // centre has moved to since the first frame), for tools and tests.
   const std::vector<SalientRegion>& candidates() const;

@@ -71,8 +71,9 @@ namespace core {
   X(double, auto_init_min_growth, 0.2, 0.0, 10.0, "",                                              \
     "or steady growth of ln(size) over the candidate's history (collision course; 0 = cue off)")  \
   X(bool, auto_init_local_contrast, true, false, true, "",                                         \
-    "auto-init candidates from pixel-level local contrast x MBD (false: MBD alone)")               \
-  X(int, auto_init_candidates, 24, 1, 64, "", "candidates examined per frame by auto-initialisation") \
+    "auto-init candidates from local contrast x MBD, and isolated ones of the contrast (false: MBD alone)") \
+  X(int, auto_init_candidates, 24, 1, 64, "",                                                      \
+    "candidate map peaks examined per frame by auto-initialisation (besides 8 isolated ones)")    \
   X(int, auto_init_max_width, 640, 64, 8192, "px",                                                 \
     "wider frames are shrunk to this width for auto-initialisation (boxes refined at full size)")  \
   X(bool, auto_init_reject_static, true, false, true, "",                                          \
