@@ -93,7 +93,9 @@ void Pipeline::Impl::beginFrame(const cv::Mat& frame, double stamp, const char* 
   }
 }
 
-Pipeline::Impl::Track& Pipeline::Impl::newTrack(const cv::Mat& frame, double stamp, const cv::Rect2f& box) {
+// given: the box is the caller's (ground truth, an operator's); otherwise a detected region, its
+// sides known to the segmentation's error (redetectedSize()).
+Pipeline::Impl::Track& Pipeline::Impl::newTrack(const cv::Mat& frame, double stamp, const cv::Rect2f& box, bool given) {
   std::unique_ptr<Track> t;
   if (!pool.empty()) {
     t = std::move(pool.back());
@@ -106,6 +108,9 @@ Pipeline::Impl::Track& Pipeline::Impl::newTrack(const cv::Mat& frame, double sta
   t->kcf.init(frame, box);
   t->status = Track::Status{next_id++, TrackState::kTracking, box};
   t->motion = Track::Motion{box, stamp};
+  t->motion.size_var = given ? cv::Vec2f(kGivenBoxSigma * kGivenBoxSigma, kGivenBoxSigma * kGivenBoxSigma)
+                             : extentVariance(box.size());
+  t->motion.size_stamp = stamp;
   t->result = firstAnswer(box);
   t->gate = Track::FilterGate();
   t->looming.start(frame, stamp, box);
@@ -201,7 +206,7 @@ const std::vector<Obstacle>& Pipeline::Impl::run(const cv::Mat& frame, double st
       pool.push_back(std::move(tracks.back()));
       tracks.pop_back();
     }
-    newTrack(frame, stamp, *start_box);
+    newTrack(frame, stamp, *start_box, true);
   }
   spawnSplits(frame, stamp);
   if (params.max_obstacles > 1) mergeTracks();

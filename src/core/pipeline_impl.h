@@ -82,8 +82,16 @@ constexpr float kVerifyMinImageMotion = 2.0f;  // verify(): working px (auto_ini
 constexpr double kVerifyStillShare = 0.5;    // verify(): a box with this share of still pixels is an overlay
 constexpr double kVerifyMaxLineCoherence = 0.85;  // verify(): gradients this aligned are a line, no motion evidence
 constexpr float kMaxResize = 1.5f;           // a re-detected box side is within 1/1.5..1.5 x the last
+constexpr float kGivenBoxSigma = 0.05f;      // ln units: a given box's sides (the scale search's step)
+constexpr float kExtentErrorPx = 1.5f;       // px: a segmented extent's error per side
 constexpr float kReacquireContrastShare = 0.5f;  // contrastedCandidate(): of the reference's contrast
 constexpr float kReacquireMinPrior = 0.1f;       // contrastedCandidate(): a candidate's least prior
+
+// Variances of ln(width) and ln(height) of a segmented region's box: kExtentErrorPx per side.
+inline cv::Vec2f extentVariance(const cv::Size2f& size) {
+  const float ew = kExtentErrorPx / std::max(1.0f, size.width), eh = kExtentErrorPx / std::max(1.0f, size.height);
+  return cv::Vec2f(ew * ew, eh * eh);
+}
 
 // Keeps the box's centre inside the frame (the box may still stick out).
 inline cv::Rect2f clampCentre(const cv::Rect2f& b, const cv::Size& frame) {
@@ -137,6 +145,10 @@ struct Pipeline::Impl {
       double good_stamp = 0.0;
       cv::Point2f velocity{0.0f, 0.0f};
       bool have_velocity = false;
+      // How well the box's sides are known (variances of their logarithms) as of size_stamp: the
+      // given or detected box's, then fused with each re-detection's extent (redetectedSize()).
+      cv::Vec2f size_var{0.0f, 0.0f};
+      double size_stamp = 0.0;
     };
     // What a frame's answer is judged against: the contrast of the box the filter (re)started on
     // (TargetContrast), and the running means of the peak and PSR on good frames (LMCF, Wang et
@@ -223,7 +235,7 @@ struct Pipeline::Impl {
   void resetAll();
   void applyPending();
   void beginFrame(const cv::Mat& frame, double stamp, const char* who);
-  Track& newTrack(const cv::Mat& frame, double stamp, const cv::Rect2f& box);
+  Track& newTrack(const cv::Mat& frame, double stamp, const cv::Rect2f& box, bool given = false);
   Track& newAutoTrack(const cv::Mat& frame, double stamp, const cv::Rect2f& box);
   void beginVerification(Track& t, const cv::Rect2f& box);
   void setVerificationStart(Track& t, const cv::Rect2f& box);
@@ -242,6 +254,7 @@ struct Pipeline::Impl {
   int contrastedCandidate(Track& t, const cv::Mat& frame, KcfResult& chosen);
   bool lostObject(Track& t, const cv::Mat& frame, const cv::Rect2f& box);
   void noteSplit(int best);
+  static cv::Size2f redetectedSize(Track::Motion& motion, double stamp, const cv::Size2f& measured);
   bool restartOn(Track& t, const cv::Mat& frame, double stamp, const cv::Rect2f& region,
                  const KcfResult& verified_result);
   float goodPeak(const Track& t) const;

@@ -186,21 +186,40 @@ void Pipeline::Impl::noteSplit(int best) {
   }
 }
 
+// The size a re-detected box takes. Each side's logarithm is a small Kalman filter: the last
+// good box's side, its variance grown by SizeFilter::kSizeNoise^2 per second since it was last
+// measured (the object turns, approaches, recedes), is fused with the region's measured extent,
+// whose error is kExtentErrorPx per side (kExtentErrorPx / side in ln units), by their inverse
+// variances, and kept within 1/kMaxResize..kMaxResize x the last. A large object's extent is
+// measured to a few per cent and re-sizes the box (the paper's re-initialisation on the new
+// box); a few-pixel target's Otsu region is often only its hot core, and one segmentation must
+// not collapse the box a given start or many re-detections have settled.
+cv::Size2f Pipeline::Impl::redetectedSize(Track::Motion& motion, double stamp, const cv::Size2f& measured) {
+  const float drift = static_cast<float>(SizeFilter::kSizeNoise * SizeFilter::kSizeNoise *
+                                         std::max(0.0, stamp - motion.size_stamp));
+  const cv::Vec2f measured_var = extentVariance(measured);
+  const cv::Size2f last = motion.good_box.size();
+  float side[2];
+  for (int k = 0; k < 2; ++k) {
+    const float last_side = std::max(1.0f, k == 0 ? last.width : last.height);
+    const float measured_side = std::max(1.0f, k == 0 ? measured.width : measured.height);
+    const float prior_var = motion.size_var[k] + drift;
+    const float gain = prior_var / (prior_var + measured_var[k]);
+    side[k] = last_side * std::exp(gain * std::log(measured_side / last_side));
+    side[k] = std::min(std::max(side[k], last_side / kMaxResize), last_side * kMaxResize);
+    motion.size_var[k] = (1.0f - gain) * prior_var;
+  }
+  motion.size_stamp = stamp;
+  return cv::Size2f(side[0], side[1]);
+}
+
 // Restarts the filter on a re-detected region (the paper's re-initialisation on the new box).
 bool Pipeline::Impl::restartOn(Track& t, const cv::Mat& frame, double stamp, const cv::Rect2f& region,
                                const KcfResult& verified_result) {
   // The salient region's own box, so the box takes the object's current size and shape (the
   // paper's re-initialisation), grown from the region's bright core to the object's extent.
   cv::Rect2f box = extent.grow(frame, region, params.extent_contrast);
-  {
-    // The region's size and shape, within a band around the last good box: Otsu regions of a
-    // few-pixel target are often only its hot core, and one bad segmentation must not
-    // collapse or blow up the box.
-    const cv::Size2f last = t.motion.good_box.size();
-    const cv::Size2f size(std::min(std::max(box.width, last.width / kMaxResize), last.width * kMaxResize),
-                          std::min(std::max(box.height, last.height / kMaxResize), last.height * kMaxResize));
-    box = boxCentredAt(boxCentre(box), size);
-  }
+  box = boxCentredAt(boxCentre(box), redetectedSize(t.motion, stamp, box.size()));
   if (!usableBox(box, frame_size)) return false;
   t.kcf.init(frame, box);
   t.refs.contrast = contrast.read(frame, box);
