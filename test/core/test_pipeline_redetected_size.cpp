@@ -59,6 +59,32 @@ double sideRatio(const cv::Rect2f& box, const cv::Rect& truth) {
   return std::sqrt(static_cast<double>(box.area()) / truth.area());
 }
 
+using DrawFn = void (*)(cv::Mat&, const cv::Rect&);
+
+// Starts a track on `start` at frame 0, follows the object there for 9 frames, then shows it at
+// `moved` on frames 10..last. Returns the main obstacle of the last frame (state kLost with id
+// -1 when a frame had none) and the track's id.
+Obstacle jumpAndFollow(DrawFn draw, const cv::Rect& start, const cv::Rect& moved, int last, int* id) {
+  Pipeline p;
+  cv::Mat frame = noisySky(0);
+  draw(frame, start);
+  *id = p.startTrack(frame, 0.0, start).at(0).id;
+  Obstacle answer;
+  for (int k = 1; k <= last; ++k) {
+    frame = noisySky(k);
+    draw(frame, k < 10 ? start : moved);
+    const auto& out = p.process(frame, k / 30.0);
+    if (out.empty()) {
+      answer = Obstacle();
+      answer.id = -1;
+      answer.state = TrackState::kLost;
+      return answer;
+    }
+    answer = out[0];
+  }
+  return answer;
+}
+
 }  // namespace
 
 // A camera jerk (beyond the filter's reach, inside the search window) makes the track re-detect
@@ -66,25 +92,10 @@ double sideRatio(const cv::Rect2f& box, const cv::Rect& truth) {
 // size it was given, within 10 %, and stay on the drone. (Taking the region's size, within the
 // 1.5x band around the last box, gave 0.67 of it.)
 TEST(RedetectedSize, ASmallTargetKeepsItsGivenBoxAcrossAReDetection) {
-  Pipeline p;
-  cv::Rect truth(140, 110, 15, 10);
-  cv::Mat frame = noisySky(0);
-  drawSmallDrone(frame, truth);
-  const int id = p.startTrack(frame, 0.0, truth).at(0).id;
-  for (int k = 1; k < 10; ++k) {
-    frame = noisySky(k);
-    drawSmallDrone(frame, truth);
-    p.process(frame, k / 30.0);
-  }
-  truth += cv::Point(18, 8);
-  Obstacle last;
-  for (int k = 10; k < 25; ++k) {
-    frame = noisySky(k);
-    drawSmallDrone(frame, truth);
-    const auto& out = p.process(frame, k / 30.0);
-    ASSERT_EQ(out.size(), 1u) << "frame " << k;
-    last = out[0];
-  }
+  const cv::Rect given(140, 110, 15, 10);
+  const cv::Rect truth = given + cv::Point(18, 8);
+  int id = 0;
+  const Obstacle last = jumpAndFollow(drawSmallDrone, given, truth, 24, &id);
   EXPECT_EQ(last.id, id);
   ASSERT_EQ(last.state, TrackState::kTracking);
   EXPECT_GT(boxIou(last.box, truth), 0.6f);
@@ -96,25 +107,10 @@ TEST(RedetectedSize, ASmallTargetKeepsItsGivenBoxAcrossAReDetection) {
 // A large object reappears after a jump at 1.3 x its size: its re-detected extent is known to a
 // few per cent, and the box takes it.
 TEST(RedetectedSize, ALargeObjectTakesItsReDetectedSize) {
-  Pipeline p;
-  cv::Rect truth(90, 70, 60, 44);
-  cv::Mat frame = noisySky(0);
-  drawLargeObject(frame, truth);
-  const int id = p.startTrack(frame, 0.0, truth).at(0).id;
-  for (int k = 1; k < 10; ++k) {
-    frame = noisySky(k);
-    drawLargeObject(frame, truth);
-    p.process(frame, k / 30.0);
-  }
-  truth = cv::Rect(110, 80, 78, 57);  // jumped and grew (a gap in the video, a zoom)
-  Obstacle last;
-  for (int k = 10; k < 30; ++k) {
-    frame = noisySky(k);
-    drawLargeObject(frame, truth);
-    const auto& out = p.process(frame, k / 30.0);
-    ASSERT_FALSE(out.empty()) << "frame " << k;
-    last = out[0];
-  }
+  const cv::Rect given(90, 70, 60, 44);
+  const cv::Rect truth(110, 80, 78, 57);  // jumped and grew (a gap in the video, a zoom)
+  int id = 0;
+  const Obstacle last = jumpAndFollow(drawLargeObject, given, truth, 29, &id);
   EXPECT_EQ(last.id, id);
   EXPECT_EQ(last.state, TrackState::kTracking);
   EXPECT_GT(boxIou(last.box, truth), 0.7f);
