@@ -206,7 +206,7 @@ const std::vector<Obstacle>& Pipeline::Impl::run(const cv::Mat& frame, double st
       pool.push_back(std::move(tracks.back()));
       tracks.pop_back();
     }
-    newTrack(frame, stamp, *start_box, true);
+    newTrack(frame, stamp, *start_box, /*given=*/true);
   }
   spawnSplits(frame, stamp);
   if (params.max_obstacles > 1) mergeTracks();

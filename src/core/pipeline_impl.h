@@ -19,10 +19,11 @@
 //                distance to the prediction and its size/aspect against the last box; the best
 //                few are verified by correlating the filter model at them (KcfTracker::evaluate,
 //                no state change) and the best verified one whose peak >= redetect_min_peak is
-//                accepted: the filter restarts (init) on its box, so the box takes the object's
-//                current size and shape. After a failed frame, a candidate alone in the window
-//                (high prior, no rival) is accepted at redetect_solo_peak x the peak threshold
-//                (the target's surroundings changed under the model). Once a box has lost the
+//                accepted: the filter restarts (init) there, the region giving the centre and
+//                each side the last box's fused with the region's extent. After a failed frame,
+//                a candidate alone in the window (high prior, no rival) is accepted at
+//                redetect_solo_peak x the peak threshold (the target's surroundings changed
+//                under the model). Once a box has lost the
 //                object since the last restart (the model followed the background), a candidate
 //                the model does not verify may be taken on its own contrast; the track is then
 //                unverified, as an auto-started one. A frame without an
@@ -82,8 +83,9 @@ constexpr float kVerifyMinImageMotion = 2.0f;  // verify(): working px (auto_ini
 constexpr double kVerifyStillShare = 0.5;    // verify(): a box with this share of still pixels is an overlay
 constexpr double kVerifyMaxLineCoherence = 0.85;  // verify(): gradients this aligned are a line, no motion evidence
 constexpr float kMaxResize = 1.5f;           // a re-detected box side is within 1/1.5..1.5 x the last
-constexpr float kGivenBoxSigma = 0.05f;      // ln units: a given box's sides (the scale search's step)
+constexpr float kGivenBoxSigma = 0.05f;      // ln units: a given box's sides (the default scale step, 5 %)
 constexpr float kExtentErrorPx = 1.5f;       // px: a segmented extent's error per side
+constexpr double kMaxSizeVariance = 1.0;     // ln units^2: redetectedSize()'s prior at most
 constexpr float kReacquireContrastShare = 0.5f;  // contrastedCandidate(): of the reference's contrast
 constexpr float kReacquireMinPrior = 0.1f;       // contrastedCandidate(): a candidate's least prior
 
@@ -145,8 +147,9 @@ struct Pipeline::Impl {
       double good_stamp = 0.0;
       cv::Point2f velocity{0.0f, 0.0f};
       bool have_velocity = false;
-      // How well the box's sides are known (variances of their logarithms) as of size_stamp: the
-      // given or detected box's, then fused with each re-detection's extent (redetectedSize()).
+      // How well the box's sides are known (variances of their logarithms) as of size_stamp (the
+      // start or the last re-detection): the given or detected box's, then fused with each
+      // re-detection's extent (redetectedSize()).
       cv::Vec2f size_var{0.0f, 0.0f};
       double size_stamp = 0.0;
     };
@@ -254,7 +257,11 @@ struct Pipeline::Impl {
   int contrastedCandidate(Track& t, const cv::Mat& frame, KcfResult& chosen);
   bool lostObject(Track& t, const cv::Mat& frame, const cv::Rect2f& box);
   void noteSplit(int best);
-  static cv::Size2f redetectedSize(Track::Motion& motion, double stamp, const cv::Size2f& measured);
+  struct RedetectedSize {
+    float side[2];      // width, height (px)
+    cv::Vec2f variance;  // of their logarithms
+  };
+  static RedetectedSize redetectedSize(const Track::Motion& motion, double stamp, const cv::Size2f& measured);
   bool restartOn(Track& t, const cv::Mat& frame, double stamp, const cv::Rect2f& region,
                  const KcfResult& verified_result);
   float goodPeak(const Track& t) const;

@@ -186,41 +186,49 @@ void Pipeline::Impl::noteSplit(int best) {
   }
 }
 
-// The size a re-detected box takes. Each side's logarithm is a small Kalman filter: the last
-// good box's side, its variance grown by SizeFilter::kSizeNoise^2 per second since it was last
-// measured (the object turns, approaches, recedes), is fused with the region's measured extent,
-// whose error is kExtentErrorPx per side (kExtentErrorPx / side in ln units), by their inverse
-// variances, and kept within 1/kMaxResize..kMaxResize x the last. A large object's extent is
-// measured to a few per cent and re-sizes the box (the paper's re-initialisation on the new
-// box); a few-pixel target's Otsu region is often only its hot core, and one segmentation must
-// not collapse the box a given start or many re-detections have settled.
-cv::Size2f Pipeline::Impl::redetectedSize(Track::Motion& motion, double stamp, const cv::Size2f& measured) {
-  const float drift = static_cast<float>(SizeFilter::kSizeNoise * SizeFilter::kSizeNoise *
-                                         std::max(0.0, stamp - motion.size_stamp));
+// The size a re-detected box takes, and how well each side is known then. Each side's logarithm
+// is a small Kalman filter: the last good box's side, with the variance carried in
+// Track::Motion::size_var grown by SizeFilter::kSizeNoise^2 per second since the start or the
+// last re-detection (the object turns, approaches, recedes; the scale search between them is not
+// counted as a measurement), is fused with the region's measured extent, whose error is
+// kExtentErrorPx per side (kExtentErrorPx / side in ln units), by their inverse variances, and
+// kept within 1/kMaxResize..kMaxResize x the last. A large object's extent is measured to a few
+// per cent and re-sizes the box (the paper's re-initialisation on the new box); a few-pixel
+// target's Otsu region is often only its hot core, and one segmentation must not collapse the
+// box a given start or many re-detections have settled. The prior's variance is capped at
+// kMaxSizeVariance: beyond it the clamp decides anyway, and a long gap cannot overflow it. A side
+// the clamp limited keeps the fused variance (it slightly overstates what is known then).
+Pipeline::Impl::RedetectedSize Pipeline::Impl::redetectedSize(const Track::Motion& motion, double stamp,
+                                                              const cv::Size2f& measured) {
+  const double drift_var =
+      SizeFilter::kSizeNoise * SizeFilter::kSizeNoise * std::max(0.0, stamp - motion.size_stamp);
   const cv::Vec2f measured_var = extentVariance(measured);
   const cv::Size2f last = motion.good_box.size();
-  float side[2];
+  RedetectedSize fused;
   for (int k = 0; k < 2; ++k) {
     const float last_side = std::max(1.0f, k == 0 ? last.width : last.height);
     const float measured_side = std::max(1.0f, k == 0 ? measured.width : measured.height);
-    const float prior_var = motion.size_var[k] + drift;
+    const float prior_var =
+        static_cast<float>(std::min(kMaxSizeVariance, static_cast<double>(motion.size_var[k]) + drift_var));
     const float gain = prior_var / (prior_var + measured_var[k]);
-    side[k] = last_side * std::exp(gain * std::log(measured_side / last_side));
-    side[k] = std::min(std::max(side[k], last_side / kMaxResize), last_side * kMaxResize);
-    motion.size_var[k] = (1.0f - gain) * prior_var;
+    const float side = last_side * std::exp(gain * std::log(measured_side / last_side));
+    fused.side[k] = std::min(std::max(side, last_side / kMaxResize), last_side * kMaxResize);
+    fused.variance[k] = (1.0f - gain) * prior_var;
   }
-  motion.size_stamp = stamp;
-  return cv::Size2f(side[0], side[1]);
+  return fused;
 }
 
 // Restarts the filter on a re-detected region (the paper's re-initialisation on the new box).
 bool Pipeline::Impl::restartOn(Track& t, const cv::Mat& frame, double stamp, const cv::Rect2f& region,
                                const KcfResult& verified_result) {
-  // The salient region's own box, so the box takes the object's current size and shape (the
-  // paper's re-initialisation), grown from the region's bright core to the object's extent.
+  // The salient region, grown from its bright core to the object's extent, gives the centre;
+  // each side is the last box's fused with the region's extent (redetectedSize()).
   cv::Rect2f box = extent.grow(frame, region, params.extent_contrast);
-  box = boxCentredAt(boxCentre(box), redetectedSize(t.motion, stamp, box.size()));
+  const RedetectedSize fused = redetectedSize(t.motion, stamp, box.size());
+  box = boxCentredAt(boxCentre(box), cv::Size2f(fused.side[0], fused.side[1]));
   if (!usableBox(box, frame_size)) return false;
+  t.motion.size_var = fused.variance;
+  t.motion.size_stamp = stamp;
   t.kcf.init(frame, box);
   t.refs.contrast = contrast.read(frame, box);
   t.refs.lost_object = false;
