@@ -162,10 +162,10 @@ int Pipeline::Impl::chooseCandidate(Track& t, const cv::Mat& frame, KcfResult& c
 // prior (saliency, distance to the prediction, size; at least kReacquireMinPrior, so that a thin
 // pole far from where the object left is not taken) whose contrast (TargetContrast) is at least
 // kReacquireContrastShare of the contrast the filter started on, and above
-// TargetContrast::kMinReference. Clutter passes that too (a mast's lattice, runway markings), so
+// kReacquireMinContrast. Clutter passes that too (a mast's lattice, runway markings), so
 // the caller reports the track as unverified until it moves like an obstacle.
 int Pipeline::Impl::contrastedCandidate(Track& t, const cv::Mat& frame, KcfResult& chosen) {
-  const float need = std::max(TargetContrast::kMinReference, kReacquireContrastShare * t.refs.contrast.ratio);
+  const float need = std::max(kReacquireMinContrast, kReacquireContrastShare * t.refs.contrast.ratio);
   const std::size_t considered =
       std::min<std::size_t>(candidates.size(), static_cast<std::size_t>(params.redetect_candidates));
   for (std::size_t i = 0; i < considered; ++i) {
@@ -327,7 +327,7 @@ void Pipeline::Impl::bridgeDroppedFrames(Track& t, const cv::Mat& frame) {
 // restarts or an answer is accepted again.
 bool Pipeline::Impl::lostObject(Track& t, const cv::Mat& frame, const cv::Rect2f& box) {
   // lost() tests this too; here it spares the measurement on a track that has nothing to lose.
-  if (t.refs.contrast.ratio < TargetContrast::kMinReference) return false;
+  if (!TargetContrast::checkable(t.refs.contrast)) return false;
   if (!TargetContrast::lost(t.refs.contrast, contrast.read(frame, box))) return false;
   t.refs.lost_object = true;
   return true;

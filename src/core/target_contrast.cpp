@@ -87,15 +87,23 @@ TargetContrast::Reading TargetContrast::read(const cv::Mat& frame, const cv::Rec
   Reading reading;
   reading.ratio = static_cast<float>(histogramRankFromTop(box_hist, rank) / noise);
   reading.noise = static_cast<float>(noise);
+  reading.ring_ratio = static_cast<float>(histogramRankFromTop(ring_hist, std::max(kSignalRank, ring_count / kSignalShareInverse)) / noise);
   return reading;
 }
 
+bool TargetContrast::checkable(const Reading& reference) {
+  const float need = std::min(kFirmReference, std::max(kMinReference, kStandOut * reference.ring_ratio));
+  return reference.ratio >= need;
+}
+
 bool TargetContrast::lost(const Reading& reference, const Reading& current) {
-  if (!(reference.ratio >= kMinReference) || current.ratio == kUnknown) return false;
+  if (!checkable(reference) || current.ratio == kUnknown) return false;
   if (current.noise > kMaxNoiseRise * reference.noise) return false;
   // Under the floor of the ring's noise now, or (the ring calmer than at the start) its signal
-  // under the floor of the noise at the start.
-  return current.ratio < kFloor || current.ratio * current.noise < kFloor * reference.noise;
+  // under the floor of the noise at the start. A faint start has a lower floor: half of what it
+  // read, so that its own dips into the noise are not taken for a loss.
+  const float floor = std::min(kFloor, kFloorShare * reference.ratio);
+  return current.ratio < floor || current.ratio * current.noise < floor * reference.noise;
 }
 
 }  // namespace core

@@ -3,7 +3,8 @@
 // TargetContrast (target_contrast.h): known answers for a small target against sky noise, a box
 // on plain sky, one hot pixel, a thin object, a box that covers the view, a colour-only target, a
 // near obstacle at 1080p (sampled grids), an object in front of clutter, no allocation, the lost()
-// rule, a box on a piece of cloud when the clouds clear, and bad input.
+// rule, a faint target on a smooth sky and in texture, a box on a piece of cloud when the clouds
+// clear, and bad input.
 #include <cmath>
 #include <limits>
 
@@ -149,9 +150,16 @@ TEST(TargetContrast, LostOnlyWhenNothingStandsOutOfAnObjectThatDidAtItsStart) {
   const auto at = [](float ratio, float noise = 3.0f) { return C::Reading{ratio, noise}; };
   EXPECT_FALSE(C::lost(at(40.0f), at(8.0f)));               // faded to a fifth, still well out of the noise
   EXPECT_TRUE(C::lost(at(40.0f), at(2.0f)));                // nothing there
-  EXPECT_TRUE(C::lost(at(C::kMinReference), at(C::kFloor - 0.01f)));
-  EXPECT_FALSE(C::lost(at(C::kMinReference), at(C::kFloor)));
-  EXPECT_FALSE(C::lost(at(C::kMinReference - 0.01f), at(0.0f)));  // started faint or textured: no check
+  EXPECT_TRUE(C::lost(at(C::kFirmReference), at(C::kFloor - 0.01f)));
+  EXPECT_FALSE(C::lost(at(C::kFirmReference), at(C::kFloor)));
+  EXPECT_FALSE(C::lost(at(C::kMinReference - 0.01f), at(0.0f)));  // started faint: no check
+  // A start between kMinReference and kFirmReference counts only if it stood out of what the
+  // ring's own pixels read by kStandOut, and then its floor is half of what it read.
+  const C::Reading faint{5.0f, 3.0f, 5.0f / C::kStandOut};
+  EXPECT_TRUE(C::lost(faint, at(C::kFloorShare * 5.0f - 0.01f)));
+  EXPECT_FALSE(C::lost(faint, at(C::kFloorShare * 5.0f)));
+  EXPECT_FALSE(C::lost(C::Reading{5.0f, 3.0f, 5.0f / C::kStandOut + 0.01f}, at(0.0f)));  // in clutter: no check
+  EXPECT_TRUE(C::lost(C::Reading{C::kFirmReference, 3.0f, C::kFirmReference}, at(C::kFloor - 0.01f)));  // firm: checked
   EXPECT_FALSE(C::lost(at(C::kUnknown, 0.0f), at(0.0f)));   // unknown at the start (box at the frame's edge)
   EXPECT_FALSE(C::lost(at(40.0f), at(C::kUnknown, 0.0f)));  // unknown now (box covers the view)
   // The ring's noise rose: clutter behind the object, where a low ratio tells nothing.
@@ -164,6 +172,35 @@ TEST(TargetContrast, LostOnlyWhenNothingStandsOutOfAnObjectThatDidAtItsStart) {
   EXPECT_TRUE(C::lost(at(10.0f, 16.0f), at(C::kFloor * 16.0f / 3.0f - 0.1f, 3.0f)));
   EXPECT_FALSE(C::lost(at(10.0f, 16.0f), at(C::kFloor * 16.0f / 3.0f + 0.1f, 3.0f)));
   EXPECT_FALSE(C::lost(at(10.0f, 16.0f), at(40.0f, 3.0f)));  // an aircraft out of the clutter into clear sky
+}
+
+TEST(TargetContrast, AFaintTargetOnASmoothSkyIsLostWhenItsBoxHoldsOnlySky) {
+  // A compressed video's sky is smoother than the sensor's noise: a bird a few levels darker
+  // than it reads under kFirmReference but stands out of what the ring's own pixels read. A box
+  // the filter left on that sky (the bird flew on) reads under half the bird, and is lost; the
+  // same faint start on a textured ring, which reads as high as the bird, is not checked at all.
+  const core::TargetContrast contrast;
+  cv::Mat sky = skyFrame(cv::Size(320, 240), 150.0, 0.6);
+  cv::rectangle(sky, cv::Rect(158, 118, 3, 2), cv::Scalar(145), cv::FILLED);
+  const cv::Rect2f box(148.0f, 108.0f, 23.0f, 22.0f);  // an annotated box, mostly sky
+  const core::TargetContrast::Reading start = contrast.read(sky, box);
+  ASSERT_GE(start.ratio, core::TargetContrast::kMinReference);
+  ASSERT_LT(start.ratio, core::TargetContrast::kFirmReference);
+  ASSERT_TRUE(core::TargetContrast::checkable(start));
+  const core::TargetContrast::Reading left_behind = contrast.read(sky, cv::Rect2f(60.0f, 60.0f, 23.0f, 22.0f));
+  EXPECT_TRUE(core::TargetContrast::lost(start, left_behind));
+  EXPECT_FALSE(core::TargetContrast::lost(start, start));
+
+  cv::Mat textured = skyFrame(cv::Size(320, 240), 150.0, 0.6);
+  cv::Mat speckle(240, 320, CV_8UC1);
+  cv::RNG rng(11);
+  rng.fill(speckle, cv::RNG::UNIFORM, 0, 6);
+  cv::subtract(textured, speckle, textured);
+  cv::rectangle(textured, cv::Rect(158, 118, 3, 2), cv::Scalar(145), cv::FILLED);
+  const core::TargetContrast::Reading in_texture = contrast.read(textured, box);
+  EXPECT_GT(in_texture.ring_ratio * core::TargetContrast::kStandOut, in_texture.ratio);
+  EXPECT_FALSE(core::TargetContrast::checkable(in_texture));
+  EXPECT_FALSE(core::TargetContrast::lost(in_texture, contrast.read(textured, cv::Rect2f(60.0f, 60.0f, 23.0f, 22.0f))));
 }
 
 TEST(TargetContrast, ABoxOnAPieceOfCloudIsLostWhenTheCloudsClear) {

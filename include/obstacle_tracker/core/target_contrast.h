@@ -23,9 +23,11 @@ namespace core {
 // Why the pipeline needs it: a correlation filter started on a small target in a box mostly of
 // sky learns mostly sky; under a pan it can follow the sky's texture (clouds, the sensor's fixed
 // pattern) with a perfect peak while the target flies on. The peak cannot tell; the box's
-// contrast can: lost() is true when a box that started on a contrasted object (at least
-// kMinReference) holds nothing out of the noise any more (under kFloor of the larger of the
-// ring's noise now and at the start, below), and the pipeline then takes the frame as failed and
+// contrast can: lost() is true when a box that started on a contrasted object (checkable():
+// at least kFirmReference, or at least kMinReference and kStandOut x what the ring's own pixels
+// read, as a small bird in a compressed video's smooth sky) holds nothing out of the noise any
+// more (under kFloor, or kFloorShare of a fainter start, of the larger of the ring's noise now and
+// at the start, below), and the pipeline then takes the frame as failed and
 // re-detects (pipeline_tracking.cpp). An object whose contrast merely fades stays found while it
 // stays out of that noise (one that fades into it, or that
 // fills only a small part of a box too large for it, reads lost); unknown is never lost. Nor is
@@ -44,17 +46,26 @@ class TargetContrast {
   static constexpr int kSignalShareInverse = 100;  // the brightest 1 %
   static constexpr int kMaxSamples = 128;
   static constexpr int kMaxBoxSamples = 512;
-  static constexpr float kMinReference = 6.0f;
+  static constexpr float kMinReference = 4.0f;
+  static constexpr float kFirmReference = 6.0f;
+  static constexpr float kStandOut = 2.0f;
   static constexpr float kFloor = 3.0f;
+  static constexpr float kFloorShare = 0.5f;
   static constexpr float kMaxNoiseRise = 2.0f;
 
   // A measurement: the ratio, and the ring's noise it divides by (grey levels; 0 when unknown).
   struct Reading {
     float ratio = kUnknown;
     float noise = 0.0f;
+    float ring_ratio = kUnknown;  // what the ring's own brightest 1 % read, in the same units
   };
   Reading read(const cv::Mat& frame, const cv::Rect2f& box) const;
   float measure(const cv::Mat& frame, const cv::Rect2f& box) const { return read(frame, box).ratio; }
+  // Whether a reading can serve as the reference of lost(): at least kStandOut x what the ring's
+  // own pixels read, and that need kept within kMinReference..kFirmReference (an object in
+  // clutter stands out of it no more than the clutter does, and then a low ratio later tells
+  // nothing; a start of kFirmReference or more is checked whatever its ring).
+  static bool checkable(const Reading& reference);
   static bool lost(const Reading& reference, const Reading& current);
 };
 
