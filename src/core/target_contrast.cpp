@@ -101,8 +101,10 @@ bool TargetContrast::lost(const Reading& reference, const Reading& current) {
   if (current.noise > kMaxNoiseRise * reference.noise) return false;
   // Under the floor of the ring's noise now, or (the ring calmer than at the start) its signal
   // under the floor of the noise at the start. A faint start has a lower floor: half of what it
-  // read, so that its own dips into the noise are not taken for a loss.
-  const float floor = std::min(kFloor, kFloorShare * reference.ratio);
+  // read, so that its own dips into the noise are not taken for a loss. A strong start has a
+  // higher one, a tenth of what it read: a box that slid off a drone 100 sigmas out of the sky
+  // and holds its edge, a few sigmas, has lost it.
+  const float floor = std::max(std::min(kFloor, kFloorShare * reference.ratio), kFadeShare * reference.ratio);
   return current.ratio < floor || current.ratio * current.noise < floor * reference.noise;
 }
 

@@ -150,6 +150,10 @@ TEST(TargetContrast, LostOnlyWhenNothingStandsOutOfAnObjectThatDidAtItsStart) {
   const auto at = [](float ratio, float noise = 3.0f) { return C::Reading{ratio, noise}; };
   EXPECT_FALSE(C::lost(at(40.0f), at(8.0f)));               // faded to a fifth, still well out of the noise
   EXPECT_TRUE(C::lost(at(40.0f), at(2.0f)));                // nothing there
+  // A strong start's floor is kFadeShare of it: a box that slid off a hot drone keeps only its
+  // edge, a few sigmas, while the drone itself stays over a hundred.
+  EXPECT_TRUE(C::lost(at(120.0f), at(C::kFadeShare * 120.0f - 0.1f)));
+  EXPECT_FALSE(C::lost(at(120.0f), at(C::kFadeShare * 120.0f + 0.1f)));
   EXPECT_TRUE(C::lost(at(C::kFirmReference), at(C::kFloor - 0.01f)));
   EXPECT_FALSE(C::lost(at(C::kFirmReference), at(C::kFloor)));
   EXPECT_FALSE(C::lost(at(C::kMinReference - 0.01f), at(0.0f)));  // started faint: no check

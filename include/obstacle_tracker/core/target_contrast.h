@@ -26,8 +26,8 @@ namespace core {
 // contrast can: lost() is true when a box that started on a contrasted object (checkable():
 // at least kFirmReference, or at least kMinReference and kStandOut x what the ring's own pixels
 // read, as a small bird in a compressed video's smooth sky) holds nothing out of the noise any
-// more (under kFloor, or kFloorShare of a fainter start, of the larger of the ring's noise now and
-// at the start, below), and the pipeline then takes the frame as failed and
+// more (under kFloor, kFloorShare of a fainter start, kFadeShare of a strong one, of the larger of
+// the ring's noise now and at the start, below), and the pipeline then takes the frame as failed and
 // re-detects (pipeline_tracking.cpp). An object whose contrast merely fades stays found while it
 // stays out of that noise (one that fades into it, or that
 // fills only a small part of a box too large for it, reads lost); unknown is never lost. Nor is
@@ -51,6 +51,7 @@ class TargetContrast {
   static constexpr float kStandOut = 2.0f;
   static constexpr float kFloor = 3.0f;
   static constexpr float kFloorShare = 0.5f;
+  static constexpr float kFadeShare = 0.1f;
   static constexpr float kMaxNoiseRise = 2.0f;
 
   // A measurement: the ratio, and the ring's noise it divides by (grey levels; 0 when unknown).
