@@ -87,7 +87,10 @@ constexpr float kGivenBoxSigma = 0.05f;      // ln units: a given box's sides (t
 constexpr float kExtentErrorPx = 1.5f;       // px: a segmented extent's error per side
 constexpr double kMaxSizeVariance = 1.0;     // ln units^2: redetectedSize()'s prior at most
 constexpr float kReacquireContrastShare = 0.5f;  // contrastedCandidate(): of the reference's contrast
-constexpr float kReacquireMinContrast = 6.0f;    // contrastedCandidate(): TargetContrast ratio, at least
+// contrastedCandidate(): a TargetContrast ratio at least this. Contrast alone also takes clutter,
+// and a region that stands out of the sky by less is too often a cloud's edge; a faint target
+// that was lost is taken back by the filter's verification of a candidate instead.
+constexpr float kReacquireMinContrast = TargetContrast::kFirmReference;
 constexpr float kReacquireMinPrior = 0.1f;       // contrastedCandidate(): a candidate's least prior
 
 // Variances of ln(width) and ln(height) of a segmented region's box: kExtentErrorPx per side.

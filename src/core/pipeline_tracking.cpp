@@ -161,7 +161,7 @@ int Pipeline::Impl::chooseCandidate(Track& t, const cv::Mat& frame, KcfResult& c
 // still tells the object is what the loss was measured with: the salient region with the best
 // prior (saliency, distance to the prediction, size; at least kReacquireMinPrior, so that a thin
 // pole far from where the object left is not taken) whose contrast (TargetContrast) is at least
-// kReacquireContrastShare of the contrast the filter started on, and above
+// kReacquireContrastShare of the contrast the filter started on, and at least
 // kReacquireMinContrast. Clutter passes that too (a mast's lattice, runway markings), so
 // the caller reports the track as unverified until it moves like an obstacle.
 int Pipeline::Impl::contrastedCandidate(Track& t, const cv::Mat& frame, KcfResult& chosen) {

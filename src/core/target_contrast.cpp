@@ -84,15 +84,19 @@ TargetContrast::Reading TargetContrast::read(const cv::Mat& frame, const cv::Rec
   }
   const double noise = std::max(1.0, kMadToSigma * histogramGroupedMedian(ring_hist, ring_count));
   const int rank = std::max(kSignalRank, box_count / kSignalShareInverse);
+  const int ring_rank = std::max(kSignalRank, ring_count / kSignalShareInverse);
   Reading reading;
   reading.ratio = static_cast<float>(histogramRankFromTop(box_hist, rank) / noise);
   reading.noise = static_cast<float>(noise);
-  reading.ring_ratio = static_cast<float>(histogramRankFromTop(ring_hist, std::max(kSignalRank, ring_count / kSignalShareInverse)) / noise);
+  reading.ring_ratio = static_cast<float>(histogramRankFromTop(ring_hist, ring_rank) / noise);
   return reading;
 }
 
 bool TargetContrast::checkable(const Reading& reference) {
-  const float need = std::min(kFirmReference, std::max(kMinReference, kStandOut * reference.ring_ratio));
+  // A ring not read (a Reading built by hand) is taken as clutter: only a firm start counts.
+  const float need = reference.ring_ratio >= 0.0f
+                         ? std::min(kFirmReference, std::max(kMinReference, kStandOut * reference.ring_ratio))
+                         : kFirmReference;
   return reference.ratio >= need;
 }
 
@@ -101,9 +105,9 @@ bool TargetContrast::lost(const Reading& reference, const Reading& current) {
   if (current.noise > kMaxNoiseRise * reference.noise) return false;
   // Under the floor of the ring's noise now, or (the ring calmer than at the start) its signal
   // under the floor of the noise at the start. A faint start has a lower floor: half of what it
-  // read, so that its own dips into the noise are not taken for a loss. A strong start has a
-  // higher one, a tenth of what it read: a box that slid off a drone 100 sigmas out of the sky
-  // and holds its edge, a few sigmas, has lost it.
+  // read, so that its own dips into the noise are not taken for a loss. A strong start (over
+  // kFloor / kFadeShare) has a higher one, kFadeShare of what it read: a box that slid off a drone
+  // 100 sigmas out of the sky and holds its edge, a few sigmas, has lost it.
   const float floor = std::max(std::min(kFloor, kFloorShare * reference.ratio), kFadeShare * reference.ratio);
   return current.ratio < floor || current.ratio * current.noise < floor * reference.noise;
 }

@@ -53,7 +53,7 @@ TEST(TargetContrast, AnObjectInFrontOfClutterIsNotLost) {
   cv::Mat sky = skyFrame(cv::Size(320, 240), 150.0, 2.0);
   cv::rectangle(sky, cv::Rect(145, 115, 30, 10), cv::Scalar(220), cv::FILLED);
   const core::TargetContrast::Reading start = contrast.read(sky, box);
-  ASSERT_GT(start.ratio, core::TargetContrast::kMinReference);
+  ASSERT_TRUE(core::TargetContrast::checkable(start));
   // The hillside: 4 x 4 px patches of grey levels spread evenly over 40..200.
   cv::Mat patches(60, 80, CV_8UC1);
   cv::RNG rng(7);
@@ -98,7 +98,7 @@ TEST(TargetContrast, ABoxThatCoversTheViewIsUnknownNotLost) {
   cv::circle(frame, cv::Point(160, 120), 30, cv::Scalar(40), cv::FILLED);
   core::TargetContrast contrast;
   const core::TargetContrast::Reading start = contrast.read(frame, cv::Rect2f(125.0f, 85.0f, 70.0f, 70.0f));
-  EXPECT_GT(start.ratio, core::TargetContrast::kMinReference);
+  EXPECT_TRUE(core::TargetContrast::checkable(start));
   cv::circle(frame, cv::Point(160, 120), 400, cv::Scalar(40), cv::FILLED);
   const core::TargetContrast::Reading close = contrast.read(frame, cv::Rect2f(-40.0f, -30.0f, 400.0f, 300.0f));
   EXPECT_EQ(close.ratio, core::TargetContrast::kUnknown);
@@ -157,6 +157,7 @@ TEST(TargetContrast, LostOnlyWhenNothingStandsOutOfAnObjectThatDidAtItsStart) {
   EXPECT_TRUE(C::lost(at(C::kFirmReference), at(C::kFloor - 0.01f)));
   EXPECT_FALSE(C::lost(at(C::kFirmReference), at(C::kFloor)));
   EXPECT_FALSE(C::lost(at(C::kMinReference - 0.01f), at(0.0f)));  // started faint: no check
+  EXPECT_FALSE(C::lost(at(5.0f), at(0.0f)));  // under kFirmReference, its ring unknown: no check
   // A start between kMinReference and kFirmReference counts only if it stood out of what the
   // ring's own pixels read by kStandOut, and then its floor is half of what it read.
   const C::Reading faint{5.0f, 3.0f, 5.0f / C::kStandOut};
@@ -182,7 +183,7 @@ TEST(TargetContrast, AFaintTargetOnASmoothSkyIsLostWhenItsBoxHoldsOnlySky) {
   // A compressed video's sky is smoother than the sensor's noise: a bird a few levels darker
   // than it reads under kFirmReference but stands out of what the ring's own pixels read. A box
   // the filter left on that sky (the bird flew on) reads under half the bird, and is lost; the
-  // same faint start on a textured ring, which reads as high as the bird, is not checked at all.
+  // same bird on a sky speckled as dark as it, whose ring reads as high as the bird, is not checked.
   const core::TargetContrast contrast;
   cv::Mat sky = skyFrame(cv::Size(320, 240), 150.0, 0.6);
   cv::rectangle(sky, cv::Rect(158, 118, 3, 2), cv::Scalar(145), cv::FILLED);
@@ -195,13 +196,16 @@ TEST(TargetContrast, AFaintTargetOnASmoothSkyIsLostWhenItsBoxHoldsOnlySky) {
   EXPECT_TRUE(core::TargetContrast::lost(start, left_behind));
   EXPECT_FALSE(core::TargetContrast::lost(start, start));
 
+  // The textured sky: 3 % of its pixels as dark as the bird.
   cv::Mat textured = skyFrame(cv::Size(320, 240), 150.0, 0.6);
-  cv::Mat speckle(240, 320, CV_8UC1);
+  cv::Mat speckle(240, 320, CV_32F);
   cv::RNG rng(11);
-  rng.fill(speckle, cv::RNG::UNIFORM, 0, 6);
-  cv::subtract(textured, speckle, textured);
+  rng.fill(speckle, cv::RNG::UNIFORM, 0.0, 1.0);
+  textured.setTo(145, speckle < 0.03);
   cv::rectangle(textured, cv::Rect(158, 118, 3, 2), cv::Scalar(145), cv::FILLED);
   const core::TargetContrast::Reading in_texture = contrast.read(textured, box);
+  ASSERT_GE(in_texture.ratio, core::TargetContrast::kMinReference);
+  ASSERT_LT(in_texture.ratio, core::TargetContrast::kFirmReference);
   EXPECT_GT(in_texture.ring_ratio * core::TargetContrast::kStandOut, in_texture.ratio);
   EXPECT_FALSE(core::TargetContrast::checkable(in_texture));
   EXPECT_FALSE(core::TargetContrast::lost(in_texture, contrast.read(textured, cv::Rect2f(60.0f, 60.0f, 23.0f, 22.0f))));
@@ -222,7 +226,8 @@ TEST(TargetContrast, ABoxOnAPieceOfCloudIsLostWhenTheCloudsClear) {
   cv::resize(patches, clouds, cv::Size(320, 240), 0.0, 0.0, cv::INTER_NEAREST);
   cv::rectangle(clouds, cv::Rect(145, 115, 30, 10), cv::Scalar(230), cv::FILLED);
   const core::TargetContrast::Reading start = contrast.read(clouds, box);
-  ASSERT_GE(start.ratio, core::TargetContrast::kMinReference);
+  ASSERT_GE(start.ratio, core::TargetContrast::kFirmReference);
+  ASSERT_TRUE(core::TargetContrast::checkable(start));
   cv::Mat clear = skyFrame(cv::Size(320, 240), 100.0, 2.0);
   cv::Mat remnant = clear.clone();
   cv::rectangle(remnant, cv::Rect(145, 115, 30, 10), cv::Scalar(112), cv::FILLED);

@@ -26,8 +26,9 @@ namespace core {
 // contrast can: lost() is true when a box that started on a contrasted object (checkable():
 // at least kFirmReference, or at least kMinReference and kStandOut x what the ring's own pixels
 // read, as a small bird in a compressed video's smooth sky) holds nothing out of the noise any
-// more (under kFloor, kFloorShare of a fainter start, kFadeShare of a strong one, of the larger of
-// the ring's noise now and at the start, below), and the pipeline then takes the frame as failed and
+// more (under kFloor, or kFloorShare of a start under 2 x kFloor, or kFadeShare of a start over
+// kFloor / kFadeShare, of the larger of the ring's noise now and at the start, below), and the
+// pipeline then takes the frame as failed and
 // re-detects (pipeline_tracking.cpp). An object whose contrast merely fades stays found while it
 // stays out of that noise (one that fades into it, or that
 // fills only a small part of a box too large for it, reads lost); unknown is never lost. Nor is
@@ -65,7 +66,8 @@ class TargetContrast {
   // Whether a reading can serve as the reference of lost(): at least kStandOut x what the ring's
   // own pixels read, and that need kept within kMinReference..kFirmReference (an object in
   // clutter stands out of it no more than the clutter does, and then a low ratio later tells
-  // nothing; a start of kFirmReference or more is checked whatever its ring).
+  // nothing; a start of kFirmReference or more is checked whatever its ring). A reading whose
+  // ring is unknown (built by hand) needs kFirmReference.
   static bool checkable(const Reading& reference);
   static bool lost(const Reading& reference, const Reading& current);
 };
