@@ -15,8 +15,16 @@
 //     newer frames were sent before the next answer;
 //   - the newest frame is never dropped: the last frame sent (nothing came after it to replace
 //     it) is answered.
+// An answer can also be lost after the nodelet published it: roscpp's publisher queue drops its
+// oldest answer when the receiving test is not scheduled for longer than the queue lasts. roscpp
+// numbers every message it publishes on a topic (it writes header.seq), so a gap between the
+// numbers of two answers received says how many were published and lost between them. Up to that
+// many unanswered frames between those two answers are counted as answered but lost, not as idle
+// drops: a correct nodelet is never blamed for the receiving side's scheduling, and the number of
+// answers published is still checked exactly against the frames processed (load.cpp).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <string>
@@ -29,6 +37,7 @@ struct FrameRecord {
   double sent = NAN;     // when the test published the frame (steady clock, s); NaN: not sent
   double answered = NAN; // when its ObstacleArray reached the test (first one); NaN: no answer
   int answers = 0;       // ObstacleArrays received with this frame's stamp
+  long seq = -1;         // header.seq of its first answer as roscpp numbered it; -1: not known
 };
 
 struct DeliveryReport {
@@ -36,10 +45,12 @@ struct DeliveryReport {
   int answered = 0;
   int doubled = 0;              // frames answered more than once
   int dropped = 0;              // sent frames with no answer
-  int dropped_while_idle = 0;   // of those, frames no earlier answer was pending for and no full
-                                // backlog pushed out
+  int dropped_while_idle = 0;   // of those, frames no earlier answer was pending for, no full
+                                // backlog pushed out and no lost answer accounts for
   int dropped_by_backlog = 0;   // frames pushed out of a full backlog while the tracker waited
   int out_of_order = 0;         // answers that arrived before the answer of an earlier frame
+  int lost_in_transport = 0;    // answers published (gaps in header.seq) that never arrived
+  int dropped_answer_lost = 0;  // dropped frames taken as answered but lost in transport
   bool last_answered = false;   // the last frame sent has an answer
   std::string idle_drops;       // indices of the first dropped-while-idle frames
 
@@ -49,10 +60,25 @@ struct DeliveryReport {
   }
 };
 
+// Unanswered frames that no pending answer or full backlog excuses, since the last answer; `gap`
+// answers were published in that interval and lost on the way, so up to `gap` of them were in fact
+// answered: which ones cannot be known, and any choice gives the same counts.
+inline void settleIdleDrops(std::vector<std::size_t>& idle, long gap, DeliveryReport& r) {
+  const std::size_t lost = gap > 0 ? std::min(static_cast<std::size_t>(gap), idle.size()) : 0;
+  r.dropped_answer_lost += static_cast<int>(lost);
+  for (std::size_t k = lost; k < idle.size(); ++k) {
+    if (++r.dropped_while_idle <= 20) r.idle_drops += " " + std::to_string(idle[k]);
+  }
+  idle.clear();
+}
+
 // backlog: depth of each of the nodelet's queues (0: none, every idle drop is a violation).
-inline DeliveryReport checkDelivery(const std::vector<FrameRecord>& frames, int backlog = 0) {
+// seq_before: header.seq of the answer received just before frames[0] (-1: not known).
+inline DeliveryReport checkDelivery(const std::vector<FrameRecord>& frames, int backlog = 0, long seq_before = -1) {
   DeliveryReport r;
   double latest_answer = -INFINITY;  // max o_j over the answered frames before the current one
+  long latest_seq = seq_before;      // header.seq of the last answered frame before the current one
+  std::vector<std::size_t> idle;     // idle-drop candidates since that frame
   int last_sent = -1;
   for (std::size_t i = 0; i < frames.size(); ++i) {
     const FrameRecord& f = frames[i];
@@ -64,6 +90,10 @@ inline DeliveryReport checkDelivery(const std::vector<FrameRecord>& frames, int 
       ++r.answered;
       if (f.answered < latest_answer) ++r.out_of_order;
       if (f.answered > latest_answer) latest_answer = f.answered;
+      const long gap = f.seq >= 0 && latest_seq >= 0 ? std::max(0L, f.seq - latest_seq - 1) : 0;
+      r.lost_in_transport += static_cast<int>(gap);
+      settleIdleDrops(idle, gap, r);
+      latest_seq = f.seq;
       continue;
     }
     ++r.dropped;
@@ -82,10 +112,11 @@ inline DeliveryReport checkDelivery(const std::vector<FrameRecord>& frames, int 
     }
     if (backlog > 0 && newer >= backlog) {
       ++r.dropped_by_backlog;
-    } else if (++r.dropped_while_idle <= 20) {
-      r.idle_drops += " " + std::to_string(i);
+    } else {
+      idle.push_back(i);
     }
   }
+  settleIdleDrops(idle, 0, r);
   r.last_answered = last_sent >= 0 && frames[static_cast<std::size_t>(last_sent)].answers > 0;
   return r;
 }

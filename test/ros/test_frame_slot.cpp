@@ -124,6 +124,40 @@ TEST(FrameDelivery, AFullBacklogMayPushOutTheOldest) {
   EXPECT_EQ(rt::checkDelivery(frames, 6).dropped_while_idle, 1);
 }
 
+TEST(FrameDelivery, AnAnswerLostInTransportIsNotAnIdleDrop) {
+  // Frames 1 and 2 were sent after frame 0's answer, while the tracker was idle. The answers
+  // numbered 11 and 13 arrived: one answer (12) was published and lost on the way, so one of the
+  // two frames was answered; the other is still an idle drop.
+  std::vector<rt::FrameRecord> frames = {
+      {0.0, 0.5, 1, 11}, {1.0, NAN, 0}, {2.0, NAN, 0}, {3.0, 3.5, 1, 13}};
+  rt::DeliveryReport r = rt::checkDelivery(frames);
+  EXPECT_EQ(r.lost_in_transport, 1);
+  EXPECT_EQ(r.dropped_answer_lost, 1);
+  EXPECT_EQ(r.dropped_while_idle, 1);
+  EXPECT_FALSE(r.kept());
+  // Two answers lost: both frames were answered.
+  frames[3].seq = 14;
+  r = rt::checkDelivery(frames);
+  EXPECT_EQ(r.lost_in_transport, 2);
+  EXPECT_EQ(r.dropped_while_idle, 0);
+  EXPECT_TRUE(r.kept());
+  // A lost answer does not excuse a drop in another interval, nor before the first known number.
+  frames = {{0.0, NAN, 0}, {1.0, 1.5, 1, 20}, {2.0, 2.5, 1, 22}, {3.0, 3.5, 1, 23}, {4.0, NAN, 0}, {5.0, 5.5, 1, 24}};
+  r = rt::checkDelivery(frames);
+  EXPECT_EQ(r.lost_in_transport, 1);
+  EXPECT_EQ(r.dropped_answer_lost, 0);
+  EXPECT_EQ(r.dropped_while_idle, 2);
+  EXPECT_EQ(r.idle_drops, " 0 4");
+  // The number of the answer before the first frame is given: the gap before frame 1 counts.
+  r = rt::checkDelivery(frames, 0, 18);
+  EXPECT_EQ(r.lost_in_transport, 2);
+  EXPECT_EQ(r.dropped_while_idle, 1);
+  EXPECT_EQ(r.idle_drops, " 4");
+  // Unknown numbers (the accuracy test) excuse nothing.
+  for (rt::FrameRecord& f : frames) f.seq = -1;
+  EXPECT_EQ(rt::checkDelivery(frames, 0, 18).dropped_while_idle, 2);
+}
+
 TEST(FrameDelivery, DoubledOutOfOrderAndLastFrameAreCaught) {
   std::vector<rt::FrameRecord> frames = {{0.0, 0.5, 2}, {1.0, 1.5, 1}};
   EXPECT_EQ(rt::checkDelivery(frames).doubled, 1);
