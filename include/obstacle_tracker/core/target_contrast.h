@@ -28,10 +28,9 @@ namespace core {
 // read, as a small bird in a compressed video's smooth sky) holds nothing out of the noise any
 // more (under kFloor, or kFloorShare of a start under 2 x kFloor, or kFadeShare of a start over
 // kFloor / kFadeShare, of the larger of the ring's noise now and at the start, below), and the
-// pipeline then takes the frame as failed and
-// re-detects (pipeline_tracking.cpp). An object whose contrast merely fades stays found while it
-// stays out of that noise (one that fades into it, or that
-// fills only a small part of a box too large for it, reads lost); unknown is never lost. Nor is
+// pipeline then takes the frame as failed and re-detects (pipeline_tracking.cpp). An object whose
+// contrast merely fades stays found while it stays out of that noise (one that fades into it, or
+// that fills only a small part of a box too large for it, reads lost); unknown is never lost. Nor is
 // a ratio that fell because the ring's noise rose beyond kMaxNoiseRise x the reference's: the
 // object moved in front of clutter (an aircraft taxiing past a hillside and runway markings),
 // where a low ratio says nothing about the box. Where the ring's noise fell instead (the clouds
