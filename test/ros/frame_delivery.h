@@ -18,10 +18,12 @@
 // An answer can also be lost after the nodelet published it: roscpp's publisher queue drops its
 // oldest answer when the receiving test is not scheduled for longer than the queue lasts. roscpp
 // numbers every message it publishes on a topic (it writes header.seq), so a gap between the
-// numbers of two answers received says how many were published and lost between them. Up to that
-// many unanswered frames between those two answers are counted as answered but lost, not as idle
-// drops: a correct nodelet is never blamed for the receiving side's scheduling, and the number of
-// answers published is still checked exactly against the frames processed (load.cpp).
+// numbers of two answers received says that answers were published and lost between them. A lost
+// answer hides which frame it answered and when that frame was processed, and that time is what
+// excuses the frames replaced meanwhile; so no unanswered frame between two such answers is
+// counted as an idle drop: a correct nodelet is never blamed for the receiving side's scheduling.
+// The number of answers published is still checked exactly against the frames processed
+// (load.cpp).
 #pragma once
 
 #include <algorithm>
@@ -50,7 +52,7 @@ struct DeliveryReport {
   int dropped_by_backlog = 0;   // frames pushed out of a full backlog while the tracker waited
   int out_of_order = 0;         // answers that arrived before the answer of an earlier frame
   int lost_in_transport = 0;    // answers published (gaps in header.seq) that never arrived
-  int dropped_answer_lost = 0;  // dropped frames taken as answered but lost in transport
+  int dropped_answer_lost = 0;  // idle-looking drops between two answers with lost ones between
   bool last_answered = false;   // the last frame sent has an answer
   std::string idle_drops;       // indices of the first dropped-while-idle frames
 
@@ -61,13 +63,15 @@ struct DeliveryReport {
 };
 
 // Unanswered frames that no pending answer or full backlog excuses, since the last answer; `gap`
-// answers were published in that interval and lost on the way, so up to `gap` of them were in fact
-// answered: which ones cannot be known, and any choice gives the same counts.
+// answers were published in that interval and lost on the way. Where gap > 0, none of them is an
+// idle drop: the lost answers' arrival times, which would have excused them, are unknown.
 inline void settleIdleDrops(std::vector<std::size_t>& idle, long gap, DeliveryReport& r) {
-  const std::size_t lost = gap > 0 ? std::min(static_cast<std::size_t>(gap), idle.size()) : 0;
-  r.dropped_answer_lost += static_cast<int>(lost);
-  for (std::size_t k = lost; k < idle.size(); ++k) {
-    if (++r.dropped_while_idle <= 20) r.idle_drops += " " + std::to_string(idle[k]);
+  if (gap > 0) {
+    r.dropped_answer_lost += static_cast<int>(idle.size());
+  } else {
+    for (const std::size_t i : idle) {
+      if (++r.dropped_while_idle <= 20) r.idle_drops += " " + std::to_string(i);
+    }
   }
   idle.clear();
 }
